@@ -1,0 +1,5 @@
+import sys
+
+from layoutdsl.cli import main
+
+sys.exit(main())
