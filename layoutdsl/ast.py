@@ -47,7 +47,7 @@ class Room:
     rho_error: float = 1.0
     """Weight of this room's size error in E_error (5.3)."""
     span: Span | None = field(default=None, compare=False)
-    spans: Mapping[str, Span] = field(default=_NO_SPANS, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
     """Span of each field by name (`min_w`, `label`, ...), for pointed diagnostics."""
 
     @property
@@ -65,7 +65,7 @@ class Obstacle:
     w: float
     h: float
     span: Span | None = field(default=None, compare=False)
-    spans: Mapping[str, Span] = field(default=_NO_SPANS, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -76,7 +76,7 @@ class Boundary:
     h: float
     obstacles: tuple[Obstacle, ...] = ()
     span: Span | None = field(default=None, compare=False)
-    spans: Mapping[str, Span] = field(default=_NO_SPANS, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -90,7 +90,7 @@ class Adjacency:
     kind: str
     """One of ADJACENCY_TYPES."""
     span: Span | None = field(default=None, compare=False)
-    spans: Mapping[str, Span] = field(default=_NO_SPANS, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -101,7 +101,7 @@ class Position:
     x: float
     y: float
     span: Span | None = field(default=None, compare=False)
-    spans: Mapping[str, Span] = field(default=_NO_SPANS, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -114,7 +114,7 @@ class Connection:
     x2: float
     y2: float
     span: Span | None = field(default=None, compare=False)
-    spans: Mapping[str, Span] = field(default=_NO_SPANS, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -125,7 +125,7 @@ class ClusterMember:
     x: float
     y: float
     span: Span | None = field(default=None, compare=False)
-    spans: Mapping[str, Span] = field(default=_NO_SPANS, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -135,7 +135,7 @@ class Cluster:
     id: str
     members: tuple[ClusterMember, ...]
     span: Span | None = field(default=None, compare=False)
-    spans: Mapping[str, Span] = field(default=_NO_SPANS, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -152,7 +152,7 @@ class Hint:
     w: float
     h: float
     span: Span | None = field(default=None, compare=False)
-    spans: Mapping[str, Span] = field(default=_NO_SPANS, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
@@ -185,7 +185,7 @@ class Settings:
     """Stop after this many branch-and-bound nodes: a deterministic stopping rule."""
     explicit: frozenset[str] = field(default=frozenset(), compare=False)
     span: Span | None = field(default=None, compare=False)
-    spans: Mapping[str, Span] = field(default=_NO_SPANS, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
 
 
 @dataclass(frozen=True, slots=True)
