@@ -1,0 +1,145 @@
+"""Emitters: the files a user takes away from `layoutdsl compile`.
+
+Each emitter reads only a `Layout` (never Pyomo objects) and writes its files atomically:
+
+| format  | files                                   | module               |
+|---------|-----------------------------------------|----------------------|
+| `xml`   | `STEM.xml` (building XML, seed §5.2)    | `layoutdsl.emit.xml` |
+| `png`   | `STEM.png` (drawing, seed §5.6)         | `layoutdsl.emit.png` |
+| `world` | `STEM.world` + its bitmap `STEM.world.png` (Stage) | `layoutdsl.emit.stage` |
+| `map`   | `STEM.pgm` + `STEM.yaml` (ROS map_server) | `layoutdsl.emit.rosmap` |
+
+`write_outputs` renders every requested format in memory first and then writes the whole
+set with `layoutdsl.atomic.write_files_atomic`, so a failure anywhere leaves none of the
+call's files behind.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable, Mapping
+from pathlib import Path
+
+from layoutdsl.atomic import write_files_atomic
+from layoutdsl.layout import Layout
+from layoutdsl.raster import DEFAULT_RESOLUTION
+
+DEFAULT_FORMATS = ("xml", "png", "world", "map")
+
+
+class EmitError(ValueError):
+    """A request the emitters cannot honour (unknown format, unknown robot room, ...)."""
+
+
+Renderer = Callable[..., dict[str, bytes]]
+Emitter = Callable[..., list[Path]]
+
+
+def _renderers() -> dict[str, Renderer]:
+    # Imported lazily so that importing layoutdsl.emit stays cheap.
+    from layoutdsl.emit import png, rosmap, stage, xml
+
+    return {"xml": xml.render, "png": png.render, "world": stage.render, "map": rosmap.render}
+
+
+def write_rendered(files: Mapping[str, bytes], outdir: Path) -> list[Path]:
+    """Write rendered files (name -> bytes) into `outdir`, all or nothing."""
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    return write_files_atomic({outdir / name: data for name, data in files.items()})
+
+
+def _emitter(name: str) -> Emitter:
+    def emit(
+        layout: Layout,
+        outdir: Path,
+        stem: str,
+        *,
+        robot_room: str | None = None,
+        resolution: float = DEFAULT_RESOLUTION,
+    ) -> list[Path]:
+        check_options(layout, robot_room=robot_room, resolution=resolution)
+        files = _renderers()[name](layout, stem, robot_room=robot_room, resolution=resolution)
+        return write_rendered(files, outdir)
+
+    emit.__name__ = f"emit_{name}"
+    emit.__doc__ = f"Write the `{name}` output of a layout into a directory; return the paths."
+    return emit
+
+
+EMITTERS: dict[str, Emitter] = {name: _emitter(name) for name in DEFAULT_FORMATS}
+"""Format name -> emitter(layout, outdir, stem, *, robot_room=None, resolution=0.05)."""
+
+
+def parse_formats(formats: Iterable[str] | str) -> tuple[str, ...]:
+    """Validate format names (a list or a comma-separated string); keep order, drop repeats."""
+    if isinstance(formats, str):
+        formats = [part.strip() for part in formats.split(",") if part.strip()]
+    chosen: list[str] = []
+    for name in formats:
+        if name not in EMITTERS:
+            valid = ", ".join(EMITTERS)
+            raise EmitError(f"unknown output format `{name}` (valid formats: {valid})")
+        if name not in chosen:
+            chosen.append(name)
+    if not chosen:
+        raise EmitError(f"no output format chosen (valid formats: {', '.join(EMITTERS)})")
+    return tuple(chosen)
+
+
+def check_options(layout: Layout, *, robot_room: str | None, resolution: float) -> None:
+    """Reject bad emitter options before anything is rendered or written."""
+    if not (resolution > 0 and resolution < 10):
+        raise EmitError(f"resolution must be a positive number of metres per cell, got {resolution}")
+    if robot_room is not None and robot_room not in {room.id for room in layout.rooms}:
+        ids = ", ".join(room.id for room in layout.rooms)
+        raise EmitError(f"--robot-room `{robot_room}` is not a room of `{layout.name}` (rooms: {ids})")
+    if not layout.rooms:
+        raise EmitError(f"layout `{layout.name}` has no rooms to emit")
+
+
+def render_outputs(
+    layout: Layout,
+    stem: str,
+    formats: Iterable[str] | str = DEFAULT_FORMATS,
+    *,
+    robot_room: str | None = None,
+    resolution: float = DEFAULT_RESOLUTION,
+) -> dict[str, bytes]:
+    """Render the chosen formats in memory: file name -> content (nothing is written)."""
+    chosen = parse_formats(formats)
+    check_options(layout, robot_room=robot_room, resolution=resolution)
+    renderers = _renderers()
+    files: dict[str, bytes] = {}
+    for name in chosen:
+        files.update(renderers[name](layout, stem, robot_room=robot_room, resolution=resolution))
+    return files
+
+
+def write_outputs(
+    layout: Layout,
+    outdir: Path,
+    stem: str,
+    formats: Iterable[str] | str = DEFAULT_FORMATS,
+    *,
+    robot_room: str | None = None,
+    resolution: float = DEFAULT_RESOLUTION,
+) -> list[Path]:
+    """Write the chosen formats for a layout into `outdir`, all-or-nothing; return the paths.
+
+    Raises EmitError (a ValueError) for an unknown format or robot room, before any file is
+    written; I/O errors propagate as OSError after every file of this call is rolled back.
+    """
+    files = render_outputs(layout, stem, formats, robot_room=robot_room, resolution=resolution)
+    return write_rendered(files, outdir)
+
+
+__all__ = [
+    "DEFAULT_FORMATS",
+    "EMITTERS",
+    "EmitError",
+    "check_options",
+    "parse_formats",
+    "render_outputs",
+    "write_outputs",
+    "write_rendered",
+]

@@ -1,0 +1,392 @@
+"""The drawing (seed §5.6): walls, tinted rooms with their id and label, doors, implicit
+portals, obstacles, a scale bar and a legend.
+
+Two steps, so the drawing can be golden-tested without comparing pixels:
+`drawing(layout)` computes a `Drawing` (a list of primitives in pixel coordinates, plain
+data), and `render_png(drawing)` paints it with Pillow. Text sizes are chosen from an
+estimate of the font's advance width, not from Pillow's measurements, so the primitive
+list does not depend on the installed font.
+
+Conventions: rooms are tinted by type as in the thesis' Figure 4.3c (corridors red,
+entrances yellow, other rooms blue, pale so that the text stays readable); walls are dark
+and as thick as `walldim`; an explicit portal (a door) is an opening in the wall with jamb
+ticks; an implicit portal (no barrier) is an opening crossed by a dashed line; obstacles
+are grey and hatched.
+"""
+
+from __future__ import annotations
+
+import io
+import math
+import textwrap
+from dataclasses import asdict, dataclass, field
+from functools import cache
+
+from PIL import Image, ImageDraw, ImageFont
+
+from layoutdsl.layout import Layout, PlacedRoom, Portal
+
+BACKGROUND = "#ffffff"
+WALL = "#2b2b2b"
+TEXT = "#111111"
+ROOM_TINTS = {"R": "#d6e4f7", "C": "#f8d7d7", "E": "#fcf3c7"}
+"""Pale blue rooms, red corridors, yellow entrances (Figure 4.3c)."""
+ROOM_TYPE_NAMES = {"R": "room", "C": "corridor", "E": "entrance"}
+OPENING = "#ffffff"
+IMPLICIT = "#555555"
+OBSTACLE_FILL = "#c8c8c8"
+OBSTACLE_HATCH = "#7a7a7a"
+BOUNDARY = "#9a9a9a"
+
+TARGET_PLAN_PIXELS = 2400
+"""The plan's longer side aims at this many pixels (a 100-room plan stays readable)."""
+MIN_PX_PER_M = 20.0
+MAX_PX_PER_M = 100.0
+MIN_FONT = 9
+CHAR_WIDTH = 0.6
+"""Estimated advance width of a character, in font sizes (generous for Pillow's default)."""
+LINE_HEIGHT = 1.2
+
+
+# ----------------------------------------------------------------------------- primitives
+
+
+@dataclass(frozen=True, slots=True)
+class Rect:
+    """An axis-aligned rectangle (x0, y0) top-left to (x1, y1) bottom-right."""
+
+    x0: float
+    y0: float
+    x1: float
+    y1: float
+    fill: str | None
+    outline: str | None = None
+    width: int = 0
+    kind: str = "rect"
+
+
+@dataclass(frozen=True, slots=True)
+class Line:
+    """A polyline; `dash` is (on, off) in pixels, or None for a solid line."""
+
+    points: tuple[tuple[float, float], ...]
+    color: str
+    width: int
+    dash: tuple[float, float] | None = None
+    kind: str = "line"
+
+
+@dataclass(frozen=True, slots=True)
+class Text:
+    """Text centred on (x, y) unless `anchor` says otherwise (Pillow anchors)."""
+
+    x: float
+    y: float
+    text: str
+    size: int
+    color: str = TEXT
+    anchor: str = "mm"
+    kind: str = "text"
+
+
+Primitive = Rect | Line | Text
+
+
+@dataclass(frozen=True, slots=True)
+class Drawing:
+    """Everything `render_png` paints, in order, on a `width` × `height` canvas."""
+
+    width: int
+    height: int
+    background: str
+    px_per_m: float
+    items: tuple[Primitive, ...] = field(default=())
+
+    def to_data(self) -> dict:
+        """Plain data (for JSON goldens), numbers rounded to 0.01 px."""
+
+        def clean(value):
+            if isinstance(value, float):
+                return round(value, 2) + 0.0  # + 0.0 turns -0.0 into 0.0
+            if isinstance(value, (list, tuple)):
+                return [clean(v) for v in value]
+            if isinstance(value, dict):
+                return {k: clean(v) for k, v in value.items()}
+            return value
+
+        return clean(
+            {
+                "width": self.width,
+                "height": self.height,
+                "background": self.background,
+                "px_per_m": self.px_per_m,
+                "items": [asdict(item) for item in self.items],
+            }
+        )
+
+
+# ----------------------------------------------------------------------------- geometry
+
+
+def text_width(text: str, size: float) -> float:
+    """Estimated width in pixels of `text` at font `size`."""
+    return len(text) * size * CHAR_WIDTH
+
+
+def choose_scale(layout: Layout) -> float:
+    """Pixels per metre: the plan's longer side near TARGET_PLAN_PIXELS, within bounds."""
+    longest = max(layout.width, layout.height, 1.0)
+    return min(MAX_PX_PER_M, max(MIN_PX_PER_M, math.floor(TARGET_PLAN_PIXELS / longest)))
+
+
+def _nice_length(max_metres: float) -> float:
+    """The longest 1-2-5 × 10^k length not above `max_metres` (for the scale bar)."""
+    if max_metres <= 0:
+        return 1.0
+    exponent = math.floor(math.log10(max_metres))
+    best = 10.0**exponent
+    for mantissa in (1, 2, 5, 10):
+        if mantissa * 10.0**exponent <= max_metres:
+            best = mantissa * 10.0**exponent
+    return best
+
+
+def _fit_label(room: PlacedRoom, box_w: float, box_h: float, base: int) -> tuple[int, list[str]]:
+    """The largest font size (≤ base) and lines (id, then the wrapped label) fitting the box."""
+    avail_w, avail_h = box_w * 0.92, box_h * 0.92
+    for size in range(base, MIN_FONT - 1, -1):
+        max_chars = max(1, int(avail_w / (size * CHAR_WIDTH)))
+        label_lines = textwrap.wrap(room.label, max_chars, break_long_words=False) if room.label else []
+        lines = [room.id, *label_lines]
+        widest = max(text_width(line, size) for line in lines)
+        if widest <= avail_w and len(lines) * size * LINE_HEIGHT <= avail_h:
+            return size, lines
+    # Too small for the label: keep the id, which the legend-free reader needs most.
+    return MIN_FONT, [room.id]
+
+
+class _Frame:
+    """Maps the layout's metres (y up) to image pixels (y down)."""
+
+    def __init__(self, layout: Layout, scale: float, margin: float) -> None:
+        pad = layout.walldim
+        self.x_min = min([0.0, *(r.x for r in layout.rooms)]) - pad
+        self.y_max = max([layout.height, *(r.y2 for r in layout.rooms)]) + pad
+        self.scale = scale
+        self.margin = margin
+
+    def px(self, x: float, y: float) -> tuple[float, float]:
+        return (self.margin + (x - self.x_min) * self.scale, self.margin + (self.y_max - y) * self.scale)
+
+    def rect(self, x0: float, y0: float, x1: float, y1: float, **style) -> Rect:
+        left, top = self.px(x0, y1)
+        right, bottom = self.px(x1, y0)
+        return Rect(left, top, right, bottom, **style)
+
+
+def _portal_primitives(layout: Layout, portal: Portal, frame: _Frame, wall_px: int) -> list[Primitive]:
+    """The opening of a portal and its marks (jamb ticks for doors, a dashed line otherwise)."""
+    a, b = layout.room(portal.a), layout.room(portal.b)
+    half = portal.width / 2
+    cx, cy = portal.centre
+    items: list[Primitive] = []
+    tick_px = max(1, wall_px // 2)
+    if portal.vertical:
+        left, right = (a, b) if a.x < b.x else (b, a)
+        lo, hi = max(cy - half, a.y, b.y), min(cy + half, a.y2, b.y2)
+        items.append(frame.rect(left.x2, lo, right.x, hi, fill=OPENING))
+        if portal.kind == "e":
+            for y in (lo, hi):
+                items.append(Line((frame.px(left.x2, y), frame.px(right.x, y)), WALL, tick_px))
+        else:
+            items.append(Line((frame.px(cx, lo), frame.px(cx, hi)), IMPLICIT, 1, (6.0, 4.0)))
+    else:
+        low, high = (a, b) if a.y < b.y else (b, a)
+        lo, hi = max(cx - half, a.x, b.x), min(cx + half, a.x2, b.x2)
+        items.append(frame.rect(lo, low.y2, hi, high.y, fill=OPENING))
+        if portal.kind == "e":
+            for x in (lo, hi):
+                items.append(Line((frame.px(x, low.y2), frame.px(x, high.y)), WALL, tick_px))
+        else:
+            items.append(Line((frame.px(lo, cy), frame.px(hi, cy)), IMPLICIT, 1, (6.0, 4.0)))
+    return items
+
+
+def _hatch(rect: Rect, spacing: float) -> list[Line]:
+    """45° hatch lines clipped to a rectangle."""
+    lines: list[Line] = []
+    w, h = rect.x1 - rect.x0, rect.y1 - rect.y0
+    # lines x - y = c for c from -h to w, each clipped to the box
+    c = -h + spacing / 2
+    while c < w:
+        start = (rect.x0 + max(0.0, c), rect.y0 + max(0.0, -c))
+        end_t = min(w - c, h)
+        end = (rect.x0 + c + end_t, rect.y0 + end_t)
+        lines.append(Line((start, end), OBSTACLE_HATCH, 1))
+        c += spacing
+    return lines
+
+
+def _legend(layout: Layout, x0: float, y0: float, font: int, scale: float, max_width: float) -> tuple[list[Primitive], float, float]:
+    """Legend and scale bar below the plan; returns primitives, width and height used."""
+    swatch = font * 1.4
+    gap = font * 1.2
+    row_h = swatch + font * 0.8
+    entries: list[tuple[str, list[Primitive]]] = []
+
+    def place(label: str, make) -> None:
+        entries.append((label, make))
+
+    for rtype in ("R", "C", "E"):
+        place(ROOM_TYPE_NAMES[rtype], lambda x, y, t=rtype: [Rect(x, y, x + swatch, y + swatch, ROOM_TINTS[t], WALL, 1)])
+    place(
+        "door (explicit portal)",
+        lambda x, y: [
+            Rect(x, y + swatch * 0.35, x + swatch, y + swatch * 0.65, WALL),
+            Rect(x + swatch * 0.3, y + swatch * 0.35, x + swatch * 0.7, y + swatch * 0.65, OPENING),
+        ],
+    )
+    place(
+        "implicit portal",
+        lambda x, y: [
+            Rect(x, y + swatch * 0.35, x + swatch, y + swatch * 0.65, WALL),
+            Rect(x + swatch * 0.2, y + swatch * 0.35, x + swatch * 0.8, y + swatch * 0.65, OPENING),
+            Line(((x + swatch * 0.2, y + swatch * 0.5), (x + swatch * 0.8, y + swatch * 0.5)), IMPLICIT, 1, (3.0, 2.0)),
+        ],
+    )
+    if layout.obstacles:
+
+        def obstacle_swatch(x: float, y: float) -> list[Primitive]:
+            box = Rect(x, y, x + swatch, y + swatch, OBSTACLE_FILL, WALL, 1)
+            return [box, *_hatch(box, swatch / 3)]
+
+        place("obstacle", obstacle_swatch)
+
+    items: list[Primitive] = []
+    x, y = x0, y0
+    used_w = 0.0
+    for label, make in entries:
+        entry_w = swatch + font * 0.5 + text_width(label, font)
+        if x > x0 and x + entry_w > x0 + max_width:
+            x, y = x0, y + row_h
+        items.extend(make(x, y))
+        items.append(Text(x + swatch + font * 0.5, y + swatch / 2, label, font, TEXT, "lm"))
+        x += entry_w + gap
+        used_w = max(used_w, x - gap - x0)
+
+    # scale bar: a 1-2-5 length of at most a quarter of the plan (and at least a metre)
+    bar_m = _nice_length(max(1.0, min(max_width / scale / 4, layout.width / 2)))
+    bar_px = bar_m * scale
+    caption = f"{bar_m:g} m"
+    if x > x0 and x + bar_px + text_width(caption, font) + font > x0 + max_width:
+        x, y = x0, y + row_h
+    bar_y = y + swatch / 2
+    items.append(Rect(x, bar_y - 3, x + bar_px, bar_y + 3, WALL))
+    items.append(Rect(x + bar_px / 2, bar_y - 3, x + bar_px, bar_y + 3, BACKGROUND, WALL, 1))
+    items.append(Text(x, bar_y + 5, "0", max(MIN_FONT, font - 2), TEXT, "mt"))
+    items.append(Text(x + bar_px, bar_y + 5, caption, max(MIN_FONT, font - 2), TEXT, "mt"))
+    x += bar_px + text_width(caption, font) / 2 + font
+    used_w = max(used_w, x - x0)
+    height = (y - y0) + row_h + font
+    return items, used_w, height
+
+
+def drawing(layout: Layout, px_per_m: float | None = None) -> Drawing:
+    """The drawing's primitives for a layout (pixel coordinates, y down)."""
+    scale = float(px_per_m) if px_per_m else float(choose_scale(layout))
+    base_font = int(max(MIN_FONT + 2, min(28, scale * 0.45)))
+    margin = float(base_font * 2)
+    frame = _Frame(layout, scale, margin)
+    wall = max(layout.walldim, 0.05)
+    wall_px = max(2, round(wall * scale))
+    plan_w = (max([layout.width, *(r.x2 for r in layout.rooms)]) + layout.walldim - frame.x_min) * scale
+    plan_h = (frame.y_max - (min([0.0, *(r.y for r in layout.rooms)]) - layout.walldim)) * scale
+
+    items: list[Primitive] = []
+    title_font = base_font + 2
+    items.append(Text(margin, margin / 2, layout.name, title_font, TEXT, "lm"))
+    # the boundary the rooms had to fit in, dashed: empty space inside it is not a room
+    bx0, by0 = frame.px(0.0, layout.height)
+    bx1, by1 = frame.px(layout.width, 0.0)
+    items.append(Line(((bx0, by0), (bx1, by0), (bx1, by1), (bx0, by1), (bx0, by0)), BOUNDARY, 1, (8.0, 6.0)))
+    # walls: each room grown by a wall thickness, then the interiors painted over them, so
+    # shared walls are exactly the gap between rooms and outer walls are one wall thick
+    for room in layout.rooms:
+        items.append(frame.rect(room.x - wall, room.y - wall, room.x2 + wall, room.y2 + wall, fill=WALL))
+    for room in layout.rooms:
+        items.append(frame.rect(room.x, room.y, room.x2, room.y2, fill=ROOM_TINTS.get(room.rtype, ROOM_TINTS["R"])))
+    for obstacle in layout.obstacles:
+        box = frame.rect(obstacle.x, obstacle.y, obstacle.x + obstacle.w, obstacle.y + obstacle.h, fill=OBSTACLE_FILL, outline=WALL, width=1)
+        items.append(box)
+        items.extend(_hatch(box, max(6.0, scale * 0.3)))
+    for portal in layout.portals:
+        items.extend(_portal_primitives(layout, portal, frame, wall_px))
+    for room in layout.rooms:
+        left, top = frame.px(room.x, room.y2)
+        right, bottom = frame.px(room.x2, room.y)
+        size, lines = _fit_label(room, right - left, bottom - top, base_font)
+        cx, cy = (left + right) / 2, (top + bottom) / 2
+        line_h = size * LINE_HEIGHT
+        first_y = cy - line_h * (len(lines) - 1) / 2
+        for index, line in enumerate(lines):
+            items.append(Text(cx, first_y + index * line_h, line, size))
+
+    legend_top = margin + plan_h + base_font
+    legend_items, legend_w, legend_h = _legend(layout, margin, legend_top, base_font, scale, max(plan_w, 600.0))
+    items.extend(legend_items)
+    width = math.ceil(margin * 2 + max(plan_w, legend_w, text_width(layout.name, title_font)))
+    height = math.ceil(legend_top + legend_h + margin / 2)
+    return Drawing(width=width, height=height, background=BACKGROUND, px_per_m=scale, items=tuple(items))
+
+
+# ----------------------------------------------------------------------------- rendering
+
+
+@cache
+def _font(size: int) -> ImageFont.ImageFont | ImageFont.FreeTypeFont:
+    try:
+        return ImageFont.load_default(size=size)
+    except TypeError:  # Pillow < 10.1 has only the fixed bitmap font
+        return ImageFont.load_default()
+
+
+def _dashed(points: tuple[tuple[float, float], ...], on: float, off: float) -> list[tuple[tuple[float, float], tuple[float, float]]]:
+    """Split a polyline into its dash segments."""
+    dashes = []
+    for (x0, y0), (x1, y1) in zip(points, points[1:]):
+        length = math.hypot(x1 - x0, y1 - y0)
+        if length == 0:
+            continue
+        ux, uy = (x1 - x0) / length, (y1 - y0) / length
+        t = 0.0
+        while t < length:
+            end = min(length, t + on)
+            dashes.append(((x0 + ux * t, y0 + uy * t), (x0 + ux * end, y0 + uy * end)))
+            t = end + off
+    return dashes
+
+
+def render_png(picture: Drawing) -> bytes:
+    """Paint a drawing with Pillow and return PNG bytes."""
+    image = Image.new("RGB", (picture.width, picture.height), picture.background)
+    draw = ImageDraw.Draw(image)
+    for item in picture.items:
+        if isinstance(item, Rect):
+            box = (min(item.x0, item.x1), min(item.y0, item.y1), max(item.x0, item.x1), max(item.y0, item.y1))
+            draw.rectangle(box, fill=item.fill, outline=item.outline, width=item.width)
+        elif isinstance(item, Line):
+            if item.dash is None:
+                draw.line(list(item.points), fill=item.color, width=item.width)
+            else:
+                for start, end in _dashed(item.points, *item.dash):
+                    draw.line([start, end], fill=item.color, width=item.width)
+        else:
+            draw.text((item.x, item.y), item.text, fill=item.color, font=_font(item.size), anchor=item.anchor)
+    buffer = io.BytesIO()
+    image.save(buffer, format="PNG", optimize=False)
+    return buffer.getvalue()
+
+
+def render(layout: Layout, stem: str, **_options: object) -> dict[str, bytes]:
+    """File name -> content for the PNG emitter: `stem.png`."""
+    return {f"{stem}.png": render_png(drawing(layout))}
