@@ -1,0 +1,325 @@
+"""SCIP lives here: solve a model from model.py and load the best layout back onto it.
+
+We use Pyomo's `scip_direct` interface (pyomo.contrib.solver, Pyomo 6.10.x, PySCIPOpt 6.x) to
+translate the Pyomo model, then drive the PySCIPOpt model ourselves, because we need what
+`solve()` does not offer: a complete warm start (continuous variables too), SCIP's emphasis
+meta settings, an event handler for progress and for a wall-clock guard, and our own gap.
+
+Console output stays off (`display/verblevel 0`): more than ~64 KiB of SCIP output through
+Pyomo's capture pipe deadlocks the process (shared/notes/solver-scouting.md).
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+
+import pyomo.environ as pyo  # noqa: F401  (registers the solver plugins; must come first)
+from pyomo.contrib.solver.solvers.scip.scip_direct import ScipDirect
+from pyscipopt import SCIP_EVENTTYPE, SCIP_PARAMEMPHASIS, SCIP_PARAMSETTING, Eventhdlr
+
+from layoutdsl.ast import Settings
+from layoutdsl.model import Formulation
+
+EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
+"""Values of the `emphasis` setting / `--emphasis` flag."""
+
+STRATEGIES = ("auto", "thesis", "cycles")
+"""auto: first-feasible construction then SCIP; thesis: SCIP from scratch; cycles: §5.5.3."""
+
+GUARD_GRACE_SECONDS = 1.0
+"""How far past its time limit a solve may run before our event handler interrupts it."""
+
+
+@dataclass(frozen=True, slots=True)
+class SolveOptions:
+    """How to solve: the spec's settings with command-line overrides applied."""
+
+    time_limit: float = 60.0
+    """Wall-clock seconds for the whole compile (construction plus SCIP)."""
+    gap: float = 0.01
+    """Stop when (incumbent - bound) / |incumbent| falls to this."""
+    seed: int = 0
+    """SCIP's randomization/randomseedshift and the construction's seed."""
+    emphasis: str = "heuristics"
+    """One of EMPHASES: SCIP's meta setting (heuristics = aggressive heuristics)."""
+    node_limit: int | None = None
+    """Stop after this many branch-and-bound nodes (deterministic)."""
+    solution_limit: int | None = None
+    """Stop after this many improving solutions (deterministic)."""
+    quiet: bool = False
+    """No progress lines on stderr."""
+    threads: int = 1
+    """SCIP is deterministic single-threaded; more threads only for the LP solver."""
+    strategy: str = "auto"
+    """One of STRATEGIES."""
+    formulation: Formulation = field(default_factory=Formulation)
+    """Which model improvements over the thesis formulation as written to use."""
+
+    @staticmethod
+    def from_settings(settings: Settings, **overrides) -> SolveOptions:
+        """Options from a spec's settings; keyword overrides (CLI flags) win when not None."""
+        values = {
+            "time_limit": settings.time_limit,
+            "gap": settings.gap,
+            "seed": settings.seed,
+            "emphasis": settings.emphasis,
+            "node_limit": settings.node_limit,
+        }
+        values.update({k: v for k, v in overrides.items() if v is not None})
+        return SolveOptions(**values)
+
+    def with_time_limit(self, seconds: float) -> SolveOptions:
+        return replace(self, time_limit=seconds)
+
+
+@dataclass(slots=True)
+class SolveOutcome:
+    """What one SCIP run found. The best solution, if any, is loaded on the model."""
+
+    status: str
+    """'optimal', 'gap_limit', 'time_limit', 'node_limit', 'solution_limit', 'infeasible',
+    'interrupted' or 'unknown'."""
+    has_solution: bool
+    objective: float | None = None
+    """SCIP's incumbent value (helper slack may make it higher than (5.1) of the layout)."""
+    bound: float | None = None
+    gap: float | None = None
+    """(incumbent - bound) / |incumbent|, computed here (SCIP's getGap is 1e20 across signs)."""
+    seconds: float = 0.0
+    first_solution_seconds: float | None = None
+    nodes: int = 0
+    start_accepted: bool | None = None
+    """Whether SCIP accepted the warm start as feasible (None: no start given)."""
+
+
+ProgressCallback = Callable[[float, float | None, float | None], None]
+"""progress(elapsed_seconds, incumbent_objective, gap) during a solve."""
+
+
+def relative_gap(primal: float | None, dual: float | None) -> float | None:
+    """(primal - dual) / |primal|, 0 when both are 0, None without an incumbent."""
+    if primal is None or dual is None or not math.isfinite(primal):
+        return None
+    if not math.isfinite(dual):
+        return math.inf
+    diff = max(primal - dual, 0.0)
+    if diff <= 1e-9:
+        return 0.0
+    return diff / max(abs(primal), 1e-9)
+
+
+def stderr_progress(elapsed: float, incumbent: float | None, gap: float | None) -> None:
+    """The default progress line: elapsed time, incumbent objective, gap."""
+    inc = "none yet" if incumbent is None else f"{incumbent:.4g}"
+    gap_text = "-" if gap is None else ("inf" if math.isinf(gap) else f"{100 * gap:.1f}%")
+    print(f"  solving: {elapsed:6.1f} s  incumbent {inc}  gap {gap_text}", file=sys.stderr, flush=True)
+
+
+class _Watch(Eventhdlr):
+    """Reports progress every `interval` seconds and interrupts SCIP past the hard deadline."""
+
+    EVENTS = (
+        SCIP_EVENTTYPE.BESTSOLFOUND,
+        SCIP_EVENTTYPE.NODESOLVED,
+        SCIP_EVENTTYPE.LPSOLVED,
+        SCIP_EVENTTYPE.PRESOLVEROUND,
+    )
+
+    def __init__(self, started: float, hard_deadline: float, progress: ProgressCallback | None,
+                 interval: float = 1.5):
+        super().__init__()
+        self.started = started
+        self.hard_deadline = hard_deadline
+        self.progress = progress
+        self.interval = interval
+        self.next_report = started + interval
+        self.first_solution: float | None = None
+        self.guard_fired = False
+
+    def eventinit(self):
+        for event in self.EVENTS:
+            self.model.catchEvent(event, self)
+
+    def eventexit(self):
+        for event in self.EVENTS:
+            self.model.dropEvent(event, self)
+
+    def eventexec(self, event):
+        now = time.monotonic()
+        if event.getType() == SCIP_EVENTTYPE.BESTSOLFOUND and self.first_solution is None:
+            self.first_solution = now - self.started
+        if now >= self.hard_deadline and not self.guard_fired:
+            self.guard_fired = True
+            self.model.interruptSolve()
+            return
+        if self.progress is not None and now >= self.next_report:
+            self.next_report = now + self.interval
+            primal = dual = None
+            if self.model.getNSols() > 0:
+                primal = self.model.getPrimalbound()
+                dual = self.model.getDualbound()
+            self.progress(now - self.started, primal, relative_gap(primal, dual))
+
+
+_STATUS = {
+    "optimal": "optimal",
+    "gaplimit": "gap_limit",
+    "timelimit": "time_limit",
+    "nodelimit": "node_limit",
+    "totalnodelimit": "node_limit",
+    "stallnodelimit": "node_limit",
+    "sollimit": "solution_limit",
+    "bestsollimit": "solution_limit",
+    "infeasible": "infeasible",
+    # every variable is bounded, so "infeasible or unbounded" can only be infeasible
+    "inforunbd": "infeasible",
+    "userinterrupt": "interrupted",
+}
+
+
+def _apply_emphasis(scip_model, emphasis: str) -> None:
+    if emphasis not in EMPHASES:
+        raise ValueError(f"unknown emphasis {emphasis!r}; expected one of {', '.join(EMPHASES)}")
+    if emphasis == "heuristics":
+        scip_model.setHeuristics(SCIP_PARAMSETTING.AGGRESSIVE)
+    elif emphasis == "feasibility":
+        scip_model.setEmphasis(SCIP_PARAMEMPHASIS.FEASIBILITY)
+    elif emphasis == "optimality":
+        scip_model.setEmphasis(SCIP_PARAMEMPHASIS.OPTIMALITY)
+    elif emphasis == "easycip":
+        scip_model.setEmphasis(SCIP_PARAMEMPHASIS.EASYCIP)
+
+
+def _has_full_start(model: pyo.ConcreteModel) -> bool:
+    return all(v.value is not None for v in model.component_data_objects(pyo.Var, active=True))
+
+
+def solve(
+    model: pyo.ConcreteModel,
+    options: SolveOptions,
+    *,
+    progress: ProgressCallback | None = None,
+    warm_start: bool = False,
+    feasibility_only: bool = False,
+) -> SolveOutcome:
+    """Solve `model` with SCIP under `options`; load the best solution onto the model.
+
+    `warm_start` hands the values currently on the variables to SCIP as a start (complete
+    when every variable has a value, else the integer ones as a partial start). With
+    `feasibility_only` the objective is dropped: SCIP stops at the first feasible layout.
+    `progress` is called every ~1.5 s; by default (and unless options.quiet) a line goes to
+    stderr.
+    """
+    if progress is None and not options.quiet:
+        progress = stderr_progress
+    if options.quiet:
+        progress = None
+    started = time.monotonic()
+    objective = model.eq5_1_objective
+    if feasibility_only:
+        objective.deactivate()
+    try:
+        interface = ScipDirect()
+        config = interface.config(value={"time_limit": options.time_limit}, preserve_implicit=True)
+        from pyomo.common.timing import HierarchicalTimer
+
+        config.timer = HierarchicalTimer()
+        # Pyomo's translation (private API of the pinned Pyomo 6.10.x): the public solve() would
+        # run optimize() itself without our event handler, emphasis and full warm start
+        scip_model, loader, _ = interface._create_solver_model(model, config)
+    finally:
+        if feasibility_only:
+            objective.activate()
+    scip_model.hideOutput(True)
+    scip_model.setParam("display/verblevel", 0)
+    _apply_emphasis(scip_model, options.emphasis)
+    scip_model.setParam("randomization/randomseedshift", int(options.seed) % 2**31)
+    scip_model.setParam("lp/threads", max(1, int(options.threads)))
+    scip_model.setParam("timing/clocktype", 2)  # wall clock: the limit a user means
+    remaining = max(0.05, options.time_limit - (time.monotonic() - started))
+    scip_model.setParam("limits/time", remaining)
+    scip_model.setParam("limits/gap", float(options.gap))
+    if options.node_limit is not None:
+        scip_model.setParam("limits/nodes", int(options.node_limit))
+    if options.solution_limit is not None:
+        scip_model.setParam("limits/solutions", int(options.solution_limit))
+    if feasibility_only:
+        scip_model.setParam("limits/solutions", 1)
+
+    start_accepted = None
+    if warm_start:
+        start_accepted = _add_start(interface, scip_model, model, feasibility_only)
+
+    watch = _Watch(started, started + options.time_limit + GUARD_GRACE_SECONDS, progress)
+    scip_model.includeEventhdlr(watch, "layoutdsl_watch", "progress and wall-clock guard")
+    scip_model.optimize()
+    seconds = time.monotonic() - started
+
+    raw = scip_model.getStatus()
+    status = _STATUS.get(raw, "unknown")
+    if status == "interrupted" and watch.guard_fired:
+        status = "time_limit"
+    has_solution = scip_model.getNSols() > 0
+    primal = bound = None
+    if has_solution:
+        loader.load_vars()
+        if not feasibility_only:
+            primal = scip_model.getPrimalbound()
+            bound = scip_model.getDualbound()
+    gap = relative_gap(primal, bound) if not feasibility_only else None
+    first = watch.first_solution
+    if has_solution and first is None:
+        first = seconds  # the start was accepted before any event could fire
+    if has_solution and start_accepted:
+        first = min(first, seconds)
+    outcome = SolveOutcome(
+        status=status,
+        has_solution=has_solution,
+        objective=primal,
+        bound=bound if bound is None or math.isfinite(bound) else None,
+        gap=gap,
+        seconds=seconds,
+        first_solution_seconds=first,
+        nodes=int(scip_model.getNNodes()),
+        start_accepted=start_accepted,
+    )
+    scip_model.freeProb()
+    return outcome
+
+
+def _add_start(interface: ScipDirect, scip_model, model: pyo.ConcreteModel, feasibility_only: bool) -> bool:
+    """Hand the values on the Pyomo variables to SCIP; True when SCIP finds them feasible."""
+    var_map = interface._pyomo_var_to_solver_var_map
+    full = _has_full_start(model)
+    sol = scip_model.createSol() if full else scip_model.createPartialSol()
+    for pyomo_var, scip_var in var_map.items():
+        if pyomo_var.value is None or (not full and not pyomo_var.is_integer()):
+            continue
+        value = pyomo_var.value
+        if pyomo_var.is_integer():
+            value = round(value)
+        scip_model.setSolVal(sol, scip_var, value)
+    if not full:
+        scip_model.addSol(sol)
+        return True
+    # Pyomo moves the objective into a variable t >= expr; give it the expression's value
+    obj_var = interface._obj_var
+    if obj_var is not None:
+        value = 0.0 if feasibility_only else pyo.value(model.eq5_1_objective.expr)
+        scip_model.setSolVal(sol, obj_var, value)
+    feasible = scip_model.checkSol(sol, printreason=False, completely=False, original=True)
+    if feasible:
+        scip_model.addSol(sol, free=True)
+        return True
+    # An inexact start still helps: SCIP repairs partial starts with its completion heuristic
+    partial = scip_model.createPartialSol()
+    for pyomo_var, scip_var in var_map.items():
+        if pyomo_var.value is not None and pyomo_var.is_integer():
+            scip_model.setSolVal(partial, scip_var, round(pyomo_var.value))
+    scip_model.addSol(partial)
+    scip_model.freeSol(sol)
+    return False
