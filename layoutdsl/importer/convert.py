@@ -1,0 +1,308 @@
+"""Convert a `Building` (a real plan) into a `Spec` following seed §5.3.
+
+Per space, in file order:
+- rectangularization (§5.3.1): ratio = sqrt(polygon area / bounding-box area); the target
+  sides are the bounding-box sides times ratio;
+- variance (§5.3.2): w_min = max(mindim, bbox_w·(ratio − var⁻)), w_max = bbox_w·(ratio + var⁺),
+  the same for h; corridors use ± var_corridor;
+- aspect ratio: ar* = long/short target side, var_avg = (var⁺ + var⁻)/2 (the thesis prints
+  a minus, but only the sum reproduces Figure 4.2), ar_min = max(1, ar* − α·var_avg −
+  β·var_avg·(ar* − 1)²), ar_max = ar* + α·var_avg + β·var_avg·(ar* − 1)².
+
+Two repairs keep every imported spec lint-clean and solvable, each announced by a warning:
+a side shorter than `mindim` gets its target raised to the minimum (W422), and a room whose
+longest possible side cannot hold its door plus two walls (eq. 5.9) gets that maximum raised
+(W423). Values are rounded to millimetres outwards (minimums down, maximums up), so the
+rounded target always stays a feasible witness of the room's own bounds.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import PurePath
+
+from layoutdsl.ast import Adjacency, Boundary, Hint, Room, Settings, Spec
+from layoutdsl.building import Building, Space
+from layoutdsl.diagnostics import Diagnostic, Severity
+from layoutdsl.importer import codes
+from layoutdsl.importer.reader import polygon_area
+from layoutdsl.source import Span
+
+# Ids by type and order (seed §5.7): R0, R1, ... then C0, ... and E0, ... in file order.
+_DEFAULT_LABELS = {"R": "ROOM", "C": "CORRIDOR", "E": "ENTRANCE"}
+_DIGITS = 3  # millimetres: fine enough for Figure 4.2's centimetres, coarse enough to read
+
+
+@dataclass(frozen=True, slots=True)
+class ImportOptions:
+    """Parameters of the conversion (seed §5.3.2). Variances are fractions of the bbox side."""
+
+    var_plus: float = 0.2
+    """variance⁺ of rooms and entrances: how much larger than the target a side may grow."""
+    var_minus: float = 0.3
+    """variance⁻ of rooms and entrances: how much smaller than the target a side may shrink."""
+    var_corridor: float = 0.4
+    """± variance of corridors. Corridors need more room to bend the layout around them;
+    0.4 is what Figure 4.2's corridor rows (e.g. C3: 3.21 7.84 5.53, ar 3.11-6.84) encode."""
+    mindim: float = 1.0
+    """Minimum side in metres of every room: wide enough for a person or a robot to pass."""
+    alpha: float = 1.5
+    """α, the linear weight of the aspect-ratio margin."""
+    beta: float = 0.2
+    """β, the quadratic weight of the aspect-ratio margin (matters for elongated rooms)."""
+    hints: bool = True
+    """Write each room's place in the original plan as a hint for the first layout."""
+
+    def __post_init__(self) -> None:
+        checks = (
+            ("var_plus", self.var_plus, 0.0, math.inf),
+            ("var_minus", self.var_minus, 0.0, 1.0),
+            ("var_corridor", self.var_corridor, 0.0, 1.0),
+            ("mindim", self.mindim, 0.0, math.inf),
+            ("alpha", self.alpha, 0.0, math.inf),
+            ("beta", self.beta, 0.0, math.inf),
+        )
+        for name, value, low, high in checks:
+            if not (math.isfinite(value) and low <= value < high):
+                bounds = f"in [{low:g}, {high:g})" if math.isfinite(high) else f">= {low:g}"
+                raise ValueError(f"{name} must be {bounds}, got {value!r}")
+        if self.mindim <= 0:
+            # Without a positive floor a sparse polygon could give a zero or negative minimum.
+            raise ValueError(f"mindim must be positive, got {self.mindim!r}")
+
+
+def _floor(value: float) -> float:
+    scale = 10**_DIGITS
+    return math.floor(value * scale + 1e-6) / scale
+
+
+def _ceil(value: float) -> float:
+    scale = 10**_DIGITS
+    return math.ceil(value * scale - 1e-6) / scale
+
+
+def _round(value: float) -> float:
+    return round(value, _DIGITS)
+
+
+def original_room_area(building: Building) -> float:
+    """Total area of the plan's room polygons in m² (what a generated layout is compared to)."""
+    scale = building.metres_per_unit**2
+    return sum(polygon_area(space.polygon) for space in building.spaces) * scale
+
+
+def room_ids(building: Building) -> dict[str, str]:
+    """Space id -> spec room id (R0, C0, E0, ... by type, in file order; seed §5.7)."""
+    counters: dict[str, int] = {}
+    ids: dict[str, str] = {}
+    for space in building.spaces:
+        rtype = space.rtype if space.rtype in _DEFAULT_LABELS else "R"
+        number = counters.get(rtype, 0)
+        counters[rtype] = number + 1
+        ids[space.id] = f"{rtype}{number}"
+    return ids
+
+
+def spec_name(building: Building) -> str:
+    """A spec name from the building's `<name>` (often a full path on the author's disk)."""
+    stem = PurePath(building.name.replace("\\", "/")).name if building.name else ""
+    return stem or "building"
+
+
+@dataclass(slots=True)
+class _Sides:
+    """Bounds of one room before rounding (metres)."""
+
+    min_w: float
+    max_w: float
+    target_w: float
+    min_h: float
+    max_h: float
+    target_h: float
+
+
+def _space_span(space: Space) -> Span:
+    line = max(space.line, 1)
+    return Span(line, 1, line, 1)
+
+
+def convert(
+    building: Building,
+    options: ImportOptions = ImportOptions(),
+    *,
+    name: str | None = None,
+    filename: str = "<building>",
+) -> tuple[Spec, list[Diagnostic]]:
+    """Turn a Building into a Spec per seed §5.3; warnings say where the plan was adjusted."""
+    diagnostics: list[Diagnostic] = []
+    settings = Settings()
+    mpu = building.metres_per_unit
+    door = _round(building.real_distance_m)
+    ids = room_ids(building)
+
+    adjacencies, door_rooms = _adjacencies(building, ids, door, filename, diagnostics)
+    # Eq. 5.9: a room holding a door needs a side of door/utilization plus two walls.
+    door_side = door / settings.door_utilization + 2 * settings.walldim
+
+    plan_min_x = min(space.bbox.min_x for space in building.spaces)
+    plan_max_x = max(space.bbox.max_x for space in building.spaces)
+    plan_min_y = min(space.bbox.min_y for space in building.spaces)
+    plan_max_y = max(space.bbox.max_y for space in building.spaces)
+    boundary = Boundary(_ceil((plan_max_x - plan_min_x) * mpu), _ceil((plan_max_y - plan_min_y) * mpu))
+
+    rooms: list[Room] = []
+    hints: list[Hint] = []
+    for space in building.spaces:
+        room_id = ids[space.id]
+        bbox_w = space.bbox.width * mpu
+        bbox_h = space.bbox.height * mpu
+        area = polygon_area(space.polygon) * mpu * mpu
+        # A self-intersecting polygon can claim more than its box; a room never fills more.
+        ratio = min(1.0, math.sqrt(area / (bbox_w * bbox_h)))
+        corridor = space.rtype == "C"
+        var_plus = options.var_corridor if corridor else options.var_plus
+        var_minus = options.var_corridor if corridor else options.var_minus
+
+        sides = _Sides(
+            min_w=max(options.mindim, bbox_w * (ratio - var_minus)),
+            max_w=bbox_w * (ratio + var_plus),
+            target_w=bbox_w * ratio,
+            min_h=max(options.mindim, bbox_h * (ratio - var_minus)),
+            max_h=bbox_h * (ratio + var_plus),
+            target_h=bbox_h * ratio,
+        )
+        label = space.label or _DEFAULT_LABELS[space.rtype if space.rtype in _DEFAULT_LABELS else "R"]
+        _lift_to_mindim(sides, ratio, var_plus, options, room_id, label, space, filename, diagnostics)
+        widened = False
+        if room_id in door_rooms and max(sides.max_w, sides.max_h) < door_side:
+            widened = True
+            _widen_for_door(sides, door_side, door, room_id, label, space, filename, diagnostics)
+
+        target_w, target_h = _round(sides.target_w), _round(sides.target_h)
+        min_w, max_w = _floor(sides.min_w), _ceil(sides.max_w)
+        min_h, max_h = _floor(sides.min_h), _ceil(sides.max_h)
+        # ar* from the rounded targets, so the written target is itself a feasible room.
+        ar_target = max(target_w, target_h) / min(target_w, target_h)
+        var_avg = (var_plus + var_minus) / 2
+        margin = options.alpha * var_avg + options.beta * var_avg * (ar_target - 1) ** 2
+        min_ar = max(1.0, _floor(ar_target - margin))
+        max_ar = _ceil(ar_target + margin)
+        if widened:
+            # The door side may need to be long while the other stays short: allow that shape.
+            short_max = max_h if max_w >= max_h else max_w
+            max_ar = max(max_ar, _ceil(door_side / short_max))
+
+        rooms.append(
+            Room(
+                id=room_id,
+                min_w=min_w,
+                max_w=max_w,
+                target_w=target_w,
+                min_h=min_h,
+                max_h=max_h,
+                target_h=target_h,
+                min_ar=min_ar,
+                max_ar=max_ar,
+                rtype=space.rtype if space.rtype in _DEFAULT_LABELS else "R",
+                label=label,
+            )
+        )
+        if options.hints:
+            # The original place, in the boundary's frame: origin bottom-left, y up.
+            hints.append(
+                Hint(
+                    room=room_id,
+                    x=_floor((space.bbox.min_x - plan_min_x) * mpu),
+                    y=_floor((plan_max_y - space.bbox.max_y) * mpu),
+                    w=_floor(bbox_w),
+                    h=_floor(bbox_h),
+                )
+            )
+
+    spec = Spec(
+        name=name or spec_name(building),
+        rooms=tuple(rooms),
+        boundary=boundary,
+        adjacencies=tuple(adjacencies),
+        hints=tuple(hints),
+    )
+    return spec, diagnostics
+
+
+def _lift_to_mindim(sides, ratio, var_plus, options, room_id, label, space, filename, diagnostics):
+    """Raise a target below mindim to the minimum, keeping the maximum's relative margin."""
+    lifted = []
+    for axis in ("w", "h"):
+        target = getattr(sides, f"target_{axis}")
+        minimum = getattr(sides, f"min_{axis}")
+        if target < minimum:
+            lifted.append(f"{'width' if axis == 'w' else 'height'} {target:.2f} m")
+            setattr(sides, f"target_{axis}", minimum)
+            upper = minimum * (ratio + var_plus) / ratio
+            setattr(sides, f"max_{axis}", max(getattr(sides, f"max_{axis}"), upper))
+    if lifted:
+        diagnostics.append(
+            Diagnostic(
+                codes.WIDENED_TO_MINDIM,
+                f"room `{room_id}` ({label}) has {' and '.join(lifted)}, below mindim "
+                f"{options.mindim:g} m; its target is raised to {options.mindim:g} m",
+                filename,
+                _space_span(space),
+                Severity.WARNING,
+                label=f"space imported as `{room_id}`",
+                help="pass a smaller `--mindim` to keep the original size",
+            )
+        )
+
+
+def _widen_for_door(sides, door_side, door, room_id, label, space, filename, diagnostics):
+    """Raise the longer possible side so the room can hold its door and two walls (5.9)."""
+    axis = "w" if sides.max_w >= sides.max_h else "h"
+    old = getattr(sides, f"max_{axis}")
+    setattr(sides, f"max_{axis}", door_side)
+    diagnostics.append(
+        Diagnostic(
+            codes.WIDENED_FOR_DOOR,
+            f"room `{room_id}` ({label}) is at most {old:.2f} m long, too short for a "
+            f"{door:g} m door between two walls; its maximum "
+            f"{'width' if axis == 'w' else 'height'} is raised to {door_side:.2f} m",
+            filename,
+            _space_span(space),
+            Severity.WARNING,
+            label=f"space imported as `{room_id}`",
+            help="pass a larger `--var-plus` to give small rooms more room",
+        )
+    )
+
+
+def _adjacencies(building, ids, door, filename, diagnostics):
+    """One adjacency per joined pair, explicit if any of its portals is (a door wins)."""
+    order = {space.id: index for index, space in enumerate(building.spaces)}
+    kinds: dict[tuple[str, str], str] = {}
+    for space in building.spaces:
+        for portal in space.portals:
+            a, b = portal.targets
+            if a == b:
+                continue
+            missing = [t for t in (a, b) if t not in order]
+            if missing:
+                # A Building from read_building never gets here; one built in code might.
+                diagnostics.append(
+                    Diagnostic(
+                        codes.UNKNOWN_SPACE,
+                        f"portal of space `{space.id}` names unknown space `{missing[0]}`",
+                        filename,
+                        _space_span(space),
+                    )
+                )
+                continue
+            key = (a, b) if order[a] < order[b] else (b, a)
+            if kinds.get(key) != "EXPLICIT":
+                kinds[key] = portal.type
+    adjacencies = [
+        Adjacency(ids[a], ids[b], door, "e" if kind == "EXPLICIT" else "i")
+        for (a, b), kind in sorted(kinds.items(), key=lambda item: (order[item[0][0]], order[item[0][1]]))
+    ]
+    door_rooms = {ids[space_id] for pair in kinds for space_id in pair}
+    return adjacencies, door_rooms
