@@ -19,6 +19,7 @@ rounded target always stays a feasible witness of the room's own bounds.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass
 from pathlib import PurePath
 
@@ -110,6 +111,24 @@ def spec_name(building: Building) -> str:
     return stem or "building"
 
 
+def spec_label(label: str) -> str:
+    """A plan's label made safe for a room line: it must read back as the same label.
+
+    In a spec a word starting with `#` opens a comment, `key=value` is a room weight and a
+    final `onB` is the on-boundary flag, so those words are altered; nothing else is.
+    """
+    words = []
+    for word in label.split():
+        word = word.lstrip("#")
+        if re.match(r"[A-Za-z_][A-Za-z0-9_]*=", word):
+            word = word.replace("=", "-")
+        if word:
+            words.append(word)
+    if words and words[-1] == "onB":
+        words[-1] = "ONB"
+    return " ".join(words)
+
+
 @dataclass(slots=True)
 class _Sides:
     """Bounds of one room before rounding (metres)."""
@@ -172,7 +191,7 @@ def convert(
             max_h=bbox_h * (ratio + var_plus),
             target_h=bbox_h * ratio,
         )
-        label = space.label or _DEFAULT_LABELS[space.rtype if space.rtype in _DEFAULT_LABELS else "R"]
+        label = spec_label(space.label) or _DEFAULT_LABELS[space.rtype if space.rtype in _DEFAULT_LABELS else "R"]
         _lift_to_mindim(sides, ratio, var_plus, options, room_id, label, space, filename, diagnostics)
         widened = False
         if room_id in door_rooms and max(sides.max_w, sides.max_h) < door_side:

@@ -1,0 +1,162 @@
+"""`layoutdsl import plan.xml -o plan.lay`: a real floor plan (building XML) -> a spec.
+
+The spec is written in the thesis' intermediate-model format (seed §5.4), plus a `hints`
+section (each room's place in the original plan) unless `--no-hints`. Diagnostics go to
+stderr; the output file is written atomically and only when the import succeeded.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from dataclasses import replace
+from pathlib import Path
+
+from layoutdsl import exitcodes
+from layoutdsl.diagnostics import Diagnostic, has_errors
+from layoutdsl.importer import ImportOptions, import_building
+from layoutdsl.importer import codes as import_codes
+from layoutdsl.source import Source
+
+_DEFAULTS = ImportOptions()
+
+
+def add_parser(subparsers) -> None:
+    """Register the `import` subcommand."""
+    parser = subparsers.add_parser(
+        "import",
+        help="convert a building XML floor plan into a spec (seed §5.3)",
+        description=(
+            "Convert a real floor plan in the building XML format into a layout spec: one "
+            "rectangular room per space (sizes from its polygon, seed §5.3), one adjacency "
+            "per pair of spaces joined by a portal, the plan's bounding box as boundary."
+        ),
+        epilog=exitcodes.EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("input", help="building XML file, or - for standard input")
+    parser.add_argument(
+        "-o", "--output", default="-", help="spec file to write, or - for standard output (default)"
+    )
+    parser.add_argument(
+        "--var-plus", type=float, default=_DEFAULTS.var_plus, metavar="F",
+        help=f"variance+ of rooms: max side = bbox side x (ratio + F) (default {_DEFAULTS.var_plus})",
+    )  # fmt: skip
+    parser.add_argument(
+        "--var-minus", type=float, default=_DEFAULTS.var_minus, metavar="F",
+        help=f"variance- of rooms: min side = bbox side x (ratio - F) (default {_DEFAULTS.var_minus})",
+    )  # fmt: skip
+    parser.add_argument(
+        "--var-corridor", type=float, default=_DEFAULTS.var_corridor, metavar="F",
+        help=f"+/- variance of corridors (default {_DEFAULTS.var_corridor})",
+    )  # fmt: skip
+    parser.add_argument(
+        "--mindim", type=float, default=_DEFAULTS.mindim, metavar="M",
+        help=f"minimum side of every room in metres (default {_DEFAULTS.mindim})",
+    )  # fmt: skip
+    parser.add_argument(
+        "--alpha", type=float, default=_DEFAULTS.alpha, metavar="F",
+        help=f"linear weight of the aspect-ratio margin (default {_DEFAULTS.alpha})",
+    )  # fmt: skip
+    parser.add_argument(
+        "--beta", type=float, default=_DEFAULTS.beta, metavar="F",
+        help=f"quadratic weight of the aspect-ratio margin (default {_DEFAULTS.beta})",
+    )  # fmt: skip
+    parser.add_argument(
+        "--no-hints", dest="hints", action="store_false",
+        help="leave out the hints section (the rooms' places in the original plan)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--stdin-filename", metavar="NAME", help="the name messages use for standard input"
+    )
+    parser.add_argument(
+        "--format", choices=("full", "concise", "json"), default="full",
+        help="how diagnostics are printed (default full)",
+    )  # fmt: skip
+    parser.add_argument("-q", "--quiet", action="store_true", help="print no summary line")
+    parser.set_defaults(run=run)
+
+
+def _print_diagnostics(diagnostics: list[Diagnostic], sources: dict[str, Source], style: str) -> None:
+    from layoutdsl import render
+
+    if not diagnostics and style != "json":
+        return
+    if style == "json":
+        text = render.render_json(diagnostics)
+    elif style == "concise":
+        text = render.render_concise(diagnostics)
+    else:
+        text = render.render_full(diagnostics, sources)
+    sys.stderr.write(text)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Import one plan; 0 on success (warnings allowed), 1 on errors, 2 on usage/I/O errors."""
+    from layoutdsl.atomic import write_text_atomic
+    from layoutdsl.format import format_spec
+
+    try:
+        options = ImportOptions(
+            var_plus=args.var_plus,
+            var_minus=args.var_minus,
+            var_corridor=args.var_corridor,
+            mindim=args.mindim,
+            alpha=args.alpha,
+            beta=args.beta,
+            hints=args.hints,
+        )
+    except ValueError as error:
+        print(f"layoutdsl import: error: {error}", file=sys.stderr)
+        return exitcodes.USAGE
+
+    text: str | None = None
+    if args.input == "-":
+        source_name = args.stdin_filename or "<stdin>"
+        text = sys.stdin.read()
+    else:
+        source_name = args.input
+    to_stdout = args.output == "-"
+    # The spec's name is the output's stem, which is also what reading the file back gives,
+    # so the formatter needs no `name` setting and the output stays a plain thesis file.
+    if to_stdout:
+        name = Path(args.stdin_filename or "stdin").stem if args.input == "-" else Path(args.input).stem
+    else:
+        name = Path(args.output).stem
+    spec, diagnostics = import_building(source_name, options, text=text, name=name)
+
+    sources = {}
+    xml_text = text if text is not None else _read_quietly(Path(source_name))
+    if xml_text is not None:
+        sources[source_name] = Source(source_name, xml_text)
+    _print_diagnostics(diagnostics, sources, args.format)
+    if spec is None or has_errors(diagnostics):
+        if any(d.code == import_codes.UNREADABLE_FILE for d in diagnostics):
+            return exitcodes.USAGE
+        return exitcodes.SPEC_ERRORS
+
+    spec = replace(spec, path=f"{name}.lay" if to_stdout else args.output)
+    output = format_spec(spec)
+    if to_stdout:
+        sys.stdout.write(output)
+        sys.stdout.flush()
+    else:
+        try:
+            write_text_atomic(args.output, output)
+        except OSError as error:
+            print(f"layoutdsl import: error: cannot write `{args.output}`: {error.strerror or error}", file=sys.stderr)
+            return exitcodes.USAGE
+    if not args.quiet and args.format != "json":
+        where = "standard output" if to_stdout else f"`{args.output}`"
+        print(
+            f"imported {len(spec.rooms)} rooms and {len(spec.adjacencies)} adjacencies into {where}",
+            file=sys.stderr,
+        )
+    return exitcodes.OK
+
+
+def _read_quietly(path: Path) -> str | None:
+    try:
+        return path.read_text(encoding="utf-8", errors="replace")
+    except OSError:
+        return None
