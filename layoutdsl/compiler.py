@@ -1,0 +1,209 @@
+"""The compile pipeline: checked spec -> (start) -> model -> SCIP -> verified Layout.
+
+Stages, each callable alone: a first feasible geometry (`start`, or a `start_provider` such
+as the construction of issue 6), `model.build_model`, `model.warm_start_from_rects`,
+`solve.solve`, `layout_from_model`, `verify.verify`. A layout that fails verification is
+never returned; infeasibility and time-outs become E9xx diagnostics (explain.py).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field, replace
+
+import pyomo.environ as pyo
+
+from layoutdsl import explain
+from layoutdsl.ast import Spec
+from layoutdsl.diagnostics import Diagnostic
+from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
+from layoutdsl.model import THESIS_AS_WRITTEN, Rect, build_model, objective_of_rects, warm_start_from_rects
+from layoutdsl.solve import ProgressCallback, SolveOptions, SolveOutcome, relative_gap, solve
+from layoutdsl.verify import verify
+
+StartProvider = Callable[[Spec, SolveOptions], "dict[str, Rect] | None"]
+"""start_provider(spec, options) -> rectangles satisfying every hard constraint, or None.
+It must return within options.time_limit seconds (its share of the compile's limit)."""
+
+START_SHARE = 0.5
+"""Share of the time limit a start provider may use; SCIP gets the rest and any time left."""
+
+
+@dataclass(slots=True)
+class CompileResult:
+    """What compile_spec produced: a verified layout, or diagnostics saying why not."""
+
+    layout: Layout | None
+    diagnostics: list[Diagnostic]
+    status: str
+    """A SolveInfo status when there is a layout; else 'infeasible', 'no_layout' (time limit
+    without one) or 'verify_failed'."""
+    timings: dict[str, float] = field(default_factory=dict)
+    """Seconds per stage: 'start', 'build', 'solve', 'verify', 'explain', 'total'."""
+    outcome: SolveOutcome | None = None
+
+
+def default_start_provider(spec: Spec, options: SolveOptions) -> dict[str, Rect] | None:
+    """The first-feasible construction of issue 6 (layoutdsl.construct), when it is installed."""
+    try:
+        from layoutdsl.construct import construct_start
+    except ImportError:
+        return None
+    try:
+        return construct_start(spec, seed=options.seed, deadline=time.monotonic() + options.time_limit)
+    except NotImplementedError:
+        return None
+
+
+def layout_from_rects(spec: Spec, rects: Mapping[str, Rect], info: SolveInfo | None = None) -> Layout:
+    """A Layout from plain rectangles: rounded rooms, portals centred on their shared walls."""
+    assert spec.boundary is not None
+    placed = {}
+    for room in spec.rooms:
+        x, y, w, h = (round_layout_number(float(v)) for v in rects[room.id])
+        placed[room.id] = PlacedRoom(room.id, room.label, room.rtype, x, y, w, h)
+    portals = []
+    for adj in spec.adjacencies:
+        try:
+            portals.append(make_portal(placed[adj.a], placed[adj.b], adj.kind, adj.door))
+        except ValueError:
+            continue  # no shared wall: the verifier reports the adjacency
+    obstacles = tuple(PlacedObstacle(o.id, o.x, o.y, o.w, o.h) for o in spec.boundary.obstacles)
+    return Layout(
+        name=spec.name,
+        width=spec.boundary.w,
+        height=spec.boundary.h,
+        walldim=spec.settings.walldim,
+        rooms=tuple(placed[r.id] for r in spec.rooms),
+        portals=tuple(portals),
+        obstacles=obstacles,
+        solve=info,
+    )
+
+
+def _model_solution(model: pyo.ConcreteModel) -> tuple[dict[str, Rect], dict[str, int]]:
+    rects = {
+        r: tuple(float(pyo.value(v[r])) for v in (model.x, model.y, model.w, model.h)) for r in model.rooms
+    }
+    orientations = {r: int(round(pyo.value(model.o[r]))) for r in model.rooms}
+    return rects, orientations  # type: ignore[return-value]
+
+
+def compile_spec(
+    spec: Spec,
+    options: SolveOptions,
+    *,
+    start: Mapping[str, Rect] | None = None,
+    start_provider: StartProvider | None = None,
+    progress: ProgressCallback | None = None,
+    explain_infeasible: bool = True,
+) -> CompileResult:
+    """Compile a checked spec to a verified Layout under `options` (strategy, limits, seed).
+
+    strategy 'thesis': the thesis' formulation as written, solved by SCIP from scratch.
+    strategy 'auto': a first feasible layout from `start`, else from `start_provider` (by
+    default the construction of issue 6), handed to SCIP as its start for polishing; without
+    a start, SCIP alone. The start itself is the answer if SCIP finds nothing better in time.
+    """
+    began = time.monotonic()
+    deadline = began + options.time_limit
+    timings: dict[str, float] = {}
+    formulation = options.formulation
+    method = "scip"
+    rects_start: dict[str, Rect] | None = dict(start) if start is not None else None
+    if options.strategy == "thesis":
+        formulation = THESIS_AS_WRITTEN
+        rects_start = None
+    elif options.strategy == "cycles":
+        cycles = _cycles_compiler()
+        if cycles is not None:
+            return cycles(spec, options, progress=progress)
+    if options.strategy != "thesis" and rects_start is None:
+        provider = start_provider or default_start_provider
+        share = replace(options, time_limit=max(0.1, START_SHARE * options.time_limit))
+        t0 = time.monotonic()
+        rects_start = provider(spec, share)
+        timings["start"] = time.monotonic() - t0
+    if rects_start is not None:
+        # a start that fails verification is never handed on as an answer
+        start_layout = layout_from_rects(spec, rects_start)
+        if verify(spec, start_layout):
+            rects_start = None
+        else:
+            method = "construction"
+
+    t0 = time.monotonic()
+    model = build_model(spec, formulation=formulation)
+    timings["build"] = time.monotonic() - t0
+    if rects_start is not None:
+        warm_start_from_rects(model, spec, rects_start)
+
+    remaining = max(0.5, deadline - time.monotonic())
+    t0 = time.monotonic()
+    outcome = solve(model, replace(options, time_limit=remaining), progress=progress,
+                    warm_start=rects_start is not None)
+    timings["solve"] = time.monotonic() - t0
+
+    candidates: list[tuple[dict[str, Rect], dict[str, int] | None, str]] = []
+    if outcome.has_solution:
+        rects, orient = _model_solution(model)
+        candidates.append((rects, orient, outcome.status))
+    if rects_start is not None:
+        candidates.append((rects_start, None, "construction"))
+
+    t0 = time.monotonic()
+    failures = []
+    for rects, orient, status in candidates:
+        objective = objective_of_rects(spec, rects, orient)
+        gap = relative_gap(objective, outcome.bound) if outcome.bound is not None else None
+        if status == "construction" and outcome.has_solution:
+            gap = None  # the bound belongs to SCIP's incumbent, which failed verification
+        first = outcome.first_solution_seconds
+        if method == "construction":
+            first = timings.get("start", 0.0)
+        elif first is not None:
+            first += timings["build"]
+        info = SolveInfo(
+            status=status,
+            objective=round_layout_number(objective),
+            bound=None if outcome.bound is None else round_layout_number(outcome.bound),
+            gap=None if gap is None else round_layout_number(gap),
+            seconds=round(time.monotonic() - began, 3),
+            first_feasible_seconds=None if first is None else round(first, 3),
+            seed=options.seed,
+            method=method,
+        )
+        layout = layout_from_rects(spec, rects, info)
+        violations = verify(spec, layout)
+        if not violations:
+            timings["verify"] = time.monotonic() - t0
+            timings["total"] = time.monotonic() - began
+            return CompileResult(layout, [], status, timings, outcome)
+        failures.append(violations)
+    timings["verify"] = time.monotonic() - t0
+
+    if failures:
+        diagnostics = [explain.verification_failed(spec, failures[0])]
+        status = "verify_failed"
+    elif outcome.status == "infeasible":
+        status = "infeasible"
+        t0 = time.monotonic()
+        diagnostics = (
+            explain.explain_infeasibility(spec, options) if explain_infeasible else [explain.infeasible_without_explanation(spec)]
+        )
+        timings["explain"] = time.monotonic() - t0
+    else:
+        status = "no_layout"
+        diagnostics = [explain.no_layout_in_time(spec, options)]
+    timings["total"] = time.monotonic() - began
+    return CompileResult(None, diagnostics, status, timings, outcome)
+
+
+def _cycles_compiler():
+    """The cycle-decomposition compile of issue 6 (layoutdsl.cycles.compile_with_cycles), if present."""
+    try:
+        from layoutdsl.cycles import compile_with_cycles
+    except ImportError:
+        return None
+    return compile_with_cycles
