@@ -1,0 +1,710 @@
+"""The linter: pure checks over a parsed Spec, each yielding located Diagnostics.
+
+CHECKS is an ordered tuple of `check_*(spec)` functions (sqlglot's optimizer RULES). A
+check reports every problem it finds, never only the first. Later checks skip what an
+earlier one already reported (an unknown room has no size to compare), so one mistake
+gives one message. Geometry follows the thesis model (seed §5.5.1): rooms may be rotated,
+corridors have no aspect-ratio limit (5.6), a shared wall must be at least
+door / door_utilization long (5.9).
+"""
+
+from __future__ import annotations
+
+import difflib
+import math
+from collections.abc import Iterable, Iterator
+
+import networkx as nx
+
+from layoutdsl.ast import Adjacency, Room, Spec
+from layoutdsl.diagnostics import Diagnostic, Severity, register
+from layoutdsl.format import format_number as _n
+from layoutdsl.source import Span
+
+# ===== Codes: E1xx names and references =====
+
+E_DUPLICATE_ROOM = register(
+    "E101", Severity.ERROR, "duplicate room id",
+    "Reports a room id defined by more than one room line.",
+    "Adjacencies, positions and clusters refer to rooms by id; a duplicate makes them ambiguous.",
+    "rooms\nR0 4 8 6 6 10 8 1 1.7 R CLASSROOM\nR0 3 5 4 5 9 8 1 2 R MEDIUM",
+)  # fmt: skip
+E_UNKNOWN_ADJACENT = register(
+    "E102", Severity.ERROR, "adjacency names an unknown room",
+    "Reports an adjacency whose room id is not defined in `rooms`.",
+    "The adjacency cannot be enforced; usually the id is misspelled.",
+    "adjacencies\nR0 C33 0.9 e     # no room C33",
+)  # fmt: skip
+E_UNKNOWN_POSITIONED = register(
+    "E103", Severity.ERROR, "position names an unknown room",
+    "Reports a `positions` line whose room id is not defined in `rooms`.",
+    "The position would be silently dropped.",
+    "positions\nR9 3 4",
+)  # fmt: skip
+E_UNKNOWN_CONNECTED = register(
+    "E104", Severity.ERROR, "connection names an unknown room",
+    "Reports a `connections` line whose room id is not defined in `rooms`.",
+    "The connection would be silently dropped.",
+    "connections\nC9 1 1 1 10",
+)  # fmt: skip
+E_UNKNOWN_MEMBER = register(
+    "E105", Severity.ERROR, "cluster names an unknown room",
+    "Reports a cluster member whose room id is not defined in `rooms`.",
+    "The cluster would silently lose a member.",
+    "clusters\nK0\nR9 0 0",
+)  # fmt: skip
+E_UNKNOWN_HINTED = register(
+    "E106", Severity.ERROR, "hint names an unknown room",
+    "Reports a `hints` line whose room id is not defined in `rooms`.",
+    "The hint would be silently ignored; usually the id is misspelled.",
+    "hints\nR9 0 0 4 4",
+)  # fmt: skip
+E_DUPLICATE_OBSTACLE = register(
+    "E107", Severity.ERROR, "duplicate obstacle id",
+    "Reports an obstacle id used twice, or also used by a room.",
+    "Ids name things in diagnostics and outputs; a shared id makes them ambiguous.",
+    "boundary\n20 50\nO1 0 0 1 1\nO1 5 5 1 1",
+)  # fmt: skip
+E_DUPLICATE_CLUSTER = register(
+    "E108", Severity.ERROR, "duplicate cluster id",
+    "Reports a cluster id used by two clusters.",
+    "Two clusters with one name cannot be told apart in messages; usually a copy-paste slip.",
+    "clusters\nK0\nR0 0 0\n\nK0\nR1 0 0",
+)  # fmt: skip
+E_TWO_POSITIONS = register(
+    "E109", Severity.ERROR, "room has two positions",
+    "Reports a room with more than one `positions` line.",
+    "The thesis allows at most one position per room (5.10); use `connections` for two points.",
+    "positions\nR0 3 4\nR0 5 6",
+)  # fmt: skip
+E_SELF_ADJACENT = register(
+    "E110", Severity.ERROR, "room adjacent to itself",
+    "Reports an adjacency between a room and itself.",
+    "A room cannot share a wall with itself; usually the second id is a typo.",
+    "adjacencies\nR0 R0 0.9 e",
+)  # fmt: skip
+E_DUPLICATE_ADJACENCY = register(
+    "E111", Severity.ERROR, "duplicate adjacency",
+    "Reports an adjacency listed twice (in either order).",
+    "Adjacencies are symmetric; a second line either repeats the first or contradicts its door.",
+    "adjacencies\nR0 C3 0.9 e\nC3 R0 0.9 e",
+)  # fmt: skip
+E_DUPLICATE_MEMBER = register(
+    "E112", Severity.ERROR, "room twice in one cluster",
+    "Reports a room listed twice in the same cluster.",
+    "A room has one point in its cluster's frame; two points contradict each other.",
+    "clusters\nK0\nR0 0 0\nR0 4 0",
+)  # fmt: skip
+E_TWO_HINTS = register(
+    "E113", Severity.ERROR, "room has two hints",
+    "Reports a room with more than one `hints` line.",
+    "A hint is the room's one starting rectangle; two are ambiguous.",
+    "hints\nR0 0 0 4 4\nR0 5 5 4 4",
+)  # fmt: skip
+
+# ===== Codes: E2xx geometry =====
+
+E_MIN_OVER_MAX = register(
+    "E201", Severity.ERROR, "minimum larger than maximum",
+    "Reports a room whose minimum width (height) exceeds its maximum width (height).",
+    "No size satisfies both bounds (5.4, 5.5): the spec is infeasible.",
+    "R0 8 4 6 6 10 8 1 1.7 R CLASSROOM    # minw 8 > maxw 4",
+)  # fmt: skip
+E_TARGET_OUTSIDE = register(
+    "E202", Severity.ERROR, "target outside its bounds",
+    "Reports a target width (height) outside [min, max].",
+    "The objective pulls the room toward a size it may not take; usually a typo or swapped column.",
+    "R0 4 8 9 6 10 8 1 1.7 R CLASSROOM    # targetw 9 > maxw 8",
+)  # fmt: skip
+E_AR_ORDER = register(
+    "E203", Severity.ERROR, "minimum aspect ratio larger than maximum",
+    "Reports minar > maxar.",
+    "No aspect ratio satisfies both bounds (5.6).",
+    "R0 4 8 6 6 10 8 2 1.5 R CLASSROOM",
+)  # fmt: skip
+E_AR_BELOW_ONE = register(
+    "E204", Severity.ERROR, "aspect ratio below 1",
+    "Reports minar < 1 (or maxar < 1).",
+    "The aspect ratio is long side / short side, so it is at least 1; a smaller bound is a mistake.",
+    "R0 4 8 6 6 10 8 0.5 1.7 R CLASSROOM",
+)  # fmt: skip
+E_AR_UNSATISFIABLE = register(
+    "E205", Severity.ERROR, "size bounds admit no allowed aspect ratio",
+    "Reports a room (not a corridor) whose width and height bounds allow no rectangle with an "
+    "aspect ratio in [minar, maxar].",
+    "Every constraint is fine alone but together they are infeasible (5.4-5.6).",
+    "R0 2 3 2.5 10 12 11 1 1.5 R CLOSET    # at least 10/3 = 3.3 long, maxar 1.5",
+)  # fmt: skip
+E_ROOM_TOO_BIG = register(
+    "E206", Severity.ERROR, "room cannot fit in the boundary",
+    "Reports a room whose minimum size does not fit in the boundary in either orientation.",
+    "Rooms must lie inside the boundary (5.7).",
+    "boundary\n10 10\n... R0 12 14 13 4 6 5 1 3.5 R HALL",
+)  # fmt: skip
+E_AREA_TOO_BIG = register(
+    "E207", Severity.ERROR, "rooms larger than the free boundary area",
+    "Reports a spec whose rooms' minimum areas add up to more than the boundary's area minus "
+    "its obstacles.",
+    "Rooms cannot overlap (5.8), so they cannot all fit.",
+    "boundary\n10 10     # but the rooms need at least 120 m²",
+)  # fmt: skip
+E_DOOR_TOO_WIDE = register(
+    "E208", Severity.ERROR, "door cannot fit on either room",
+    "Reports an adjacency whose required shared wall (door / door_utilization) is longer than "
+    "the longest side one of its rooms can have.",
+    "The rooms must share a wall at least that long (5.9), so the spec is infeasible.",
+    "adjacencies\nR7 C2 3.5 e     # R7 is at most 3 m long",
+)  # fmt: skip
+E_POSITION_OUTSIDE = register(
+    "E209", Severity.ERROR, "position outside the boundary",
+    "Reports a `positions` point outside the boundary.",
+    "The room must cover the point (5.10) and lie inside the boundary (5.7): infeasible.",
+    "boundary\n20 50\n\npositions\nR0 25 3",
+)  # fmt: skip
+E_POSITION_IN_OBSTACLE = register(
+    "E210", Severity.ERROR, "position inside an obstacle",
+    "Reports a `positions` point strictly inside an obstacle.",
+    "A room covering the point would overlap the obstacle (5.8, 5.10): infeasible.",
+    "boundary\n20 50\nO1 0 0 5 5\n\npositions\nR0 2 2",
+)  # fmt: skip
+E_CONNECTION_OUTSIDE = register(
+    "E211", Severity.ERROR, "connection point outside the boundary",
+    "Reports a `connections` point outside the boundary.",
+    "The room must cover both points (5.11) inside the boundary: infeasible.",
+    "connections\nC3 1 1 1 60     # boundary is 50 m high",
+)  # fmt: skip
+E_CONNECTION_IN_OBSTACLE = register(
+    "E212", Severity.ERROR, "connection point inside an obstacle",
+    "Reports a `connections` point strictly inside an obstacle.",
+    "A room covering the point would overlap the obstacle: infeasible.",
+    "boundary\n20 50\nO1 0 0 5 5\n\nconnections\nC3 2 2 2 20",
+)  # fmt: skip
+E_OBSTACLE_OUTSIDE = register(
+    "E213", Severity.ERROR, "obstacle leaves the boundary",
+    "Reports an obstacle that is not entirely inside the boundary.",
+    "Obstacles are parts of the floor that rooms avoid; one outside it is almost surely a typo.",
+    "boundary\n20 50\nO1 18 0 5 5",
+)  # fmt: skip
+E_OBSTACLES_OVERLAP = register(
+    "E214", Severity.ERROR, "obstacles overlap",
+    "Reports two obstacles whose interiors overlap.",
+    "Overlapping obstacles usually mean a wrong coordinate, and they make the free area wrong.",
+    "boundary\n20 50\nO1 0 0 5 5\nO2 4 4 5 5",
+)  # fmt: skip
+E_NOT_PLANAR = register(
+    "E215", Severity.ERROR, "room graph is not planar",
+    "Reports adjacencies that no arrangement of rectangles can realise because the room graph "
+    "is not planar (for example five mutually adjacent rooms, K5).",
+    "Rooms that touch form a planar graph; the solver would search in vain until its time limit.",
+    "adjacencies: every pair of R0 R1 R2 R3 R4",
+)  # fmt: skip
+E_NOT_POSITIVE = register(
+    "E216", Severity.ERROR, "size must be positive",
+    "Reports a zero or negative length: a room's minimum size, the boundary, an obstacle, a "
+    "door or a hint size.",
+    "Lengths are metres of real things; zero or less is a typo.",
+    "boundary\n0 50",
+)  # fmt: skip
+E_POINTS_TOO_FAR = register(
+    "E217", Severity.ERROR, "connection points farther apart than the room can reach",
+    "Reports a connection whose two points cannot both be covered by the room at its maximum size "
+    "in either orientation.",
+    "The room must cover both points (5.11): infeasible.",
+    "connections\nR0 1 1 1 30     # R0 is at most 10 m long",
+)  # fmt: skip
+
+# ===== Codes: W3xx warnings =====
+
+W_COMPONENTS = register(
+    "W301", Severity.WARNING, "room graph has several components",
+    "Reports rooms with no chain of adjacencies to the rest of the building.",
+    "A robot could never reach them: a generated plan would contain unreachable rooms.",
+    "rooms R0 R1 R2 with only `R0 R1` adjacent: R2 is unreachable",
+)  # fmt: skip
+W_EMPTY_CLUSTER = register(
+    "W302", Severity.WARNING, "empty cluster",
+    "Reports a cluster id with no member lines under it.",
+    "An empty cluster constrains nothing; usually its members were forgotten or misplaced.",
+    "clusters\nK0\n\nK1\nR0 0 0",
+)  # fmt: skip
+W_HINT_OUTSIDE = register(
+    "W303", Severity.WARNING, "hint outside the boundary",
+    "Reports a hint rectangle that is not inside the boundary.",
+    "Hints only guide the solver, so it is not an error, but such a hint cannot be used as given.",
+    "boundary\n20 50\n\nhints\nR0 18 0 5 5",
+)  # fmt: skip
+
+_FALLBACK_SPAN = Span(1, 1, 1, 2)
+
+
+def _span(node, field: str | None = None) -> Span:
+    """The span of a node's field, else of the node; programmatic specs may have none."""
+    if field is not None and node.spans:
+        span = node.spans.get(field)
+        if span is not None:
+            return span
+    return node.span or _FALLBACK_SPAN
+
+
+def _diag(spec: Spec, code: str, message: str, span: Span, label: str = "", help: str | None = None,
+          notes: tuple[str, ...] = (), warning: bool = False) -> Diagnostic:  # fmt: skip
+    return Diagnostic(
+        code, message, spec.path, span, Severity.WARNING if warning else Severity.ERROR,
+        label=label, help=help, notes=notes,
+    )  # fmt: skip
+
+
+def _did_you_mean(word: str, candidates: Iterable[str]) -> str | None:
+    match = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.6)
+    return f"did you mean `{match[0]}`?" if match else None
+
+
+def _rooms_by_id(spec: Spec) -> dict[str, Room]:
+    rooms: dict[str, Room] = {}
+    for room in spec.rooms:
+        rooms.setdefault(room.id, room)
+    return rooms
+
+
+# ===== Names =====
+
+
+def check_duplicate_ids(spec: Spec) -> Iterator[Diagnostic]:
+    """E101, E107, E108: ids defined twice."""
+    first: dict[str, Room] = {}
+    for room in spec.rooms:
+        if room.id in first:
+            yield _diag(spec, E_DUPLICATE_ROOM, f"room `{room.id}` is defined twice", _span(room, "id"),
+                        "second definition", "rename one of the two rooms",
+                        (f"first defined on line {_span(first[room.id]).line}",))  # fmt: skip
+        else:
+            first[room.id] = room
+    seen_obstacles: dict[str, int] = {}
+    for obstacle in spec.boundary.obstacles if spec.boundary else ():
+        if obstacle.id in first:
+            yield _diag(spec, E_DUPLICATE_OBSTACLE, f"obstacle `{obstacle.id}` has the id of a room",
+                        _span(obstacle, "id"), "also a room id", "give the obstacle its own id",
+                        (f"room `{obstacle.id}` is defined on line {_span(first[obstacle.id]).line}",))  # fmt: skip
+        elif obstacle.id in seen_obstacles:
+            yield _diag(spec, E_DUPLICATE_OBSTACLE, f"obstacle `{obstacle.id}` is defined twice",
+                        _span(obstacle, "id"), "second definition", "rename one of the two obstacles",
+                        (f"first defined on line {seen_obstacles[obstacle.id]}",))  # fmt: skip
+        else:
+            seen_obstacles[obstacle.id] = _span(obstacle).line
+    seen_clusters: dict[str, int] = {}
+    for cluster in spec.clusters:
+        if cluster.id in seen_clusters:
+            yield _diag(spec, E_DUPLICATE_CLUSTER, f"cluster `{cluster.id}` is defined twice",
+                        _span(cluster, "id"), "second definition", "rename one of the two clusters",
+                        (f"first defined on line {seen_clusters[cluster.id]}",))  # fmt: skip
+        else:
+            seen_clusters[cluster.id] = _span(cluster).line
+
+
+def check_references(spec: Spec) -> Iterator[Diagnostic]:
+    """E102-E106: every room id used outside `rooms` is defined there."""
+    known = _rooms_by_id(spec)
+
+    def unknown(code: str, node, field: str, room_id: str, what: str) -> Diagnostic:
+        return _diag(spec, code, f"{what} unknown room `{room_id}`", _span(node, field), "not defined",
+                     _did_you_mean(room_id, known))  # fmt: skip
+
+    for adjacency in spec.adjacencies:
+        for field, room_id in (("a", adjacency.a), ("b", adjacency.b)):
+            if room_id not in known:
+                other = adjacency.b if field == "a" else adjacency.a
+                yield unknown(E_UNKNOWN_ADJACENT, adjacency, field, room_id, f"room `{other}` is adjacent to")
+    for position in spec.positions:
+        if position.room not in known:
+            yield unknown(E_UNKNOWN_POSITIONED, position, "room", position.room, "position for")
+    for connection in spec.connections:
+        if connection.room not in known:
+            yield unknown(E_UNKNOWN_CONNECTED, connection, "room", connection.room, "connection for")
+    for cluster in spec.clusters:
+        for member in cluster.members:
+            if member.room not in known:
+                yield unknown(E_UNKNOWN_MEMBER, member, "room", member.room, f"cluster `{cluster.id}` has")
+    for hint in spec.hints:
+        if hint.room not in known:
+            yield unknown(E_UNKNOWN_HINTED, hint, "room", hint.room, "hint for")
+
+
+def check_repeats(spec: Spec) -> Iterator[Diagnostic]:
+    """E109-E113: self/duplicate adjacencies, second positions or hints, repeated members."""
+    pairs: dict[frozenset[str], Adjacency] = {}
+    for adjacency in spec.adjacencies:
+        if adjacency.a == adjacency.b:
+            yield _diag(spec, E_SELF_ADJACENT, f"room `{adjacency.a}` is adjacent to itself",
+                        _span(adjacency, "b"), "same room", "name two different rooms")  # fmt: skip
+            continue
+        pair = frozenset((adjacency.a, adjacency.b))
+        if pair in pairs:
+            first = pairs[pair]
+            yield _diag(spec, E_DUPLICATE_ADJACENCY,
+                        f"adjacency between `{adjacency.a}` and `{adjacency.b}` is listed twice",
+                        _span(adjacency), "second listing", "remove one of the two lines",
+                        (f"first listed on line {_span(first).line}",))  # fmt: skip
+        else:
+            pairs[pair] = adjacency
+    for nodes, code, what in ((spec.positions, E_TWO_POSITIONS, "position"), (spec.hints, E_TWO_HINTS, "hint")):
+        first_line: dict[str, int] = {}
+        for node in nodes:
+            if node.room in first_line:
+                help_text = ("to make the room cover two points use one `connections` line"
+                             if what == "position" else "keep one hint per room")  # fmt: skip
+                yield _diag(spec, code, f"room `{node.room}` has two {what}s", _span(node, "room"),
+                            f"second {what}", help_text, (f"first {what} on line {first_line[node.room]}",))  # fmt: skip
+            else:
+                first_line[node.room] = _span(node).line
+    for cluster in spec.clusters:
+        if not cluster.members:
+            yield _diag(spec, W_EMPTY_CLUSTER, f"cluster `{cluster.id}` has no rooms", _span(cluster, "id"),
+                        "empty", "list its rooms as `room x y` lines under the cluster id, or remove it",
+                        warning=True)  # fmt: skip
+        member_line: dict[str, int] = {}
+        for member in cluster.members:
+            if member.room in member_line:
+                yield _diag(spec, E_DUPLICATE_MEMBER,
+                            f"room `{member.room}` is listed twice in cluster `{cluster.id}`",
+                            _span(member, "room"), "second listing", "keep one point per room",
+                            (f"first listed on line {member_line[member.room]}",))  # fmt: skip
+            else:
+                member_line[member.room] = _span(member).line
+
+
+# ===== Geometry =====
+
+
+def _room_bounds_ok(room: Room) -> bool:
+    """True when the room's own numbers are consistent (what check_room_sizes verifies)."""
+    return (
+        0 < room.min_w <= room.max_w and 0 < room.min_h <= room.max_h
+        and room.min_w <= room.target_w <= room.max_w and room.min_h <= room.target_h <= room.max_h
+        and 1 <= room.min_ar <= room.max_ar
+    )  # fmt: skip
+
+
+def _aspect_ratio_possible(room: Room) -> bool:
+    """Is there w in [minw, maxw], h in [minh, maxh] with max(w,h)/min(w,h) in [minar, maxar]?"""
+    # The reachable ratios form an interval: its ends come from the rectangle's corners,
+    # except that a square is reachable whenever the two ranges overlap.
+    corners = [
+        max(w, h) / min(w, h)
+        for w in (room.min_w, room.max_w)
+        for h in (room.min_h, room.max_h)
+    ]
+    highest = max(corners)
+    overlap = max(room.min_w, room.min_h) <= min(room.max_w, room.max_h)
+    lowest = 1.0 if overlap else min(corners)
+    return lowest <= room.max_ar * (1 + 1e-12) and highest >= room.min_ar * (1 - 1e-12)
+
+
+def check_room_sizes(spec: Spec) -> Iterator[Diagnostic]:
+    """E216, E201-E205: each room's sizes and aspect ratios are consistent."""
+    for room in spec.rooms:
+        broken = False
+        for field, value, name in (("min_w", room.min_w, "minw"), ("min_h", room.min_h, "minh")):
+            if value <= 0:
+                broken = True
+                yield _diag(spec, E_NOT_POSITIVE, f"room `{room.id}` has `{name}` {_n(value)}, not positive",
+                            _span(room, field), "must be > 0", "sizes are metres; give a positive minimum")  # fmt: skip
+        for axis, lo, hi, target in (("w", room.min_w, room.max_w, room.target_w),
+                                     ("h", room.min_h, room.max_h, room.target_h)):  # fmt: skip
+            if lo > hi:
+                broken = True
+                yield _diag(spec, E_MIN_OVER_MAX,
+                            f"room `{room.id}` has `min{axis}` {_n(lo)} larger than `max{axis}` {_n(hi)}",
+                            _span(room, f"min_{axis}"), f"larger than max{axis}",
+                            f"swap min{axis} and max{axis}")  # fmt: skip
+            elif not lo <= target <= hi:
+                broken = True
+                side = "below" if target < lo else "above"
+                yield _diag(spec, E_TARGET_OUTSIDE,
+                            f"room `{room.id}` has `target{axis}` {_n(target)} {side} its bounds [{_n(lo)}, {_n(hi)}]",
+                            _span(room, f"target_{axis}"), f"outside [min{axis}, max{axis}]",
+                            f"use a target{axis} between {_n(lo)} and {_n(hi)}")  # fmt: skip
+        if room.min_ar < 1 or room.max_ar < 1:
+            broken = True
+            field = "min_ar" if room.min_ar < 1 else "max_ar"
+            value = min(room.min_ar, room.max_ar)
+            yield _diag(spec, E_AR_BELOW_ONE,
+                        f"room `{room.id}` has aspect ratio bound {_n(value)} below 1",
+                        _span(room, field), "must be at least 1",
+                        "the aspect ratio is long side / short side; use 1 for a square")  # fmt: skip
+        elif room.min_ar > room.max_ar:
+            broken = True
+            yield _diag(spec, E_AR_ORDER,
+                        f"room `{room.id}` has `minar` {_n(room.min_ar)} larger than `maxar` {_n(room.max_ar)}",
+                        _span(room, "min_ar"), "larger than maxar", "swap minar and maxar")  # fmt: skip
+        if broken or room.is_corridor:
+            continue  # corridors have no aspect-ratio constraint (5.6)
+        if not _aspect_ratio_possible(room):
+            yield _diag(spec, E_AR_UNSATISFIABLE,
+                        f"room `{room.id}`: no size within its bounds has an aspect ratio in "
+                        f"[{_n(room.min_ar)}, {_n(room.max_ar)}]",
+                        Span(_span(room, "min_w").line, _span(room, "min_w").col,
+                             _span(room, "max_ar").end_line, _span(room, "max_ar").end_col),
+                        "these bounds contradict each other",
+                        "widen the aspect-ratio range or the size bounds; "
+                        f"sizes allow ratios {_ratio_range(room)}")  # fmt: skip
+
+
+def _ratio_range(room: Room) -> str:
+    corners = [max(w, h) / min(w, h) for w in (room.min_w, room.max_w) for h in (room.min_h, room.max_h)]
+    overlap = max(room.min_w, room.min_h) <= min(room.max_w, room.max_h)
+    lowest = 1.0 if overlap else min(corners)
+    return f"from {lowest:.3g} to {max(corners):.3g}"
+
+
+def _obstacle_area_inside(spec: Spec) -> float:
+    boundary = spec.boundary
+    total = 0.0
+    for o in boundary.obstacles:
+        w = max(0.0, min(o.x + o.w, boundary.w) - max(o.x, 0.0))
+        h = max(0.0, min(o.y + o.h, boundary.h) - max(o.y, 0.0))
+        total += w * h
+    return total
+
+
+def check_boundary(spec: Spec) -> Iterator[Diagnostic]:
+    """E216, E213, E214: the boundary and its obstacles are sound."""
+    boundary = spec.boundary
+    if boundary is None:
+        return
+    for field, value in (("w", boundary.w), ("h", boundary.h)):
+        if value <= 0:
+            yield _diag(spec, E_NOT_POSITIVE, f"boundary {field} is {_n(value)}, not positive",
+                        _span(boundary, field), "must be > 0", "the boundary is `w h` in metres")  # fmt: skip
+    valid = []
+    for o in boundary.obstacles:
+        bad = [f for f, v in (("w", o.w), ("h", o.h)) if v <= 0]
+        for field in bad:
+            yield _diag(spec, E_NOT_POSITIVE, f"obstacle `{o.id}` has {field} {_n(getattr(o, field))}, not positive",
+                        _span(o, field), "must be > 0")  # fmt: skip
+        if bad:
+            continue
+        if boundary.w > 0 and boundary.h > 0 and (
+            o.x < 0 or o.y < 0 or o.x + o.w > boundary.w or o.y + o.h > boundary.h
+        ):
+            yield _diag(spec, E_OBSTACLE_OUTSIDE,
+                        f"obstacle `{o.id}` ({_n(o.x)}..{_n(o.x + o.w)} x {_n(o.y)}..{_n(o.y + o.h)}) "
+                        f"leaves the boundary (0..{_n(boundary.w)} x 0..{_n(boundary.h)})",
+                        _span(o), "not inside the boundary",
+                        "x, y are the obstacle's bottom-left corner; x + w and y + h must stay within the boundary")  # fmt: skip
+        valid.append(o)
+    for index, b in enumerate(valid):
+        for a in valid[:index]:
+            if a.x < b.x + b.w and b.x < a.x + a.w and a.y < b.y + b.h and b.y < a.y + a.h:
+                yield _diag(spec, E_OBSTACLES_OVERLAP, f"obstacle `{b.id}` overlaps obstacle `{a.id}`",
+                            _span(b), "overlaps", "merge them into one obstacle or fix a coordinate",
+                            (f"`{a.id}` is on line {_span(a).line}",))  # fmt: skip
+
+
+def _boundary_ok(spec: Spec) -> bool:
+    return spec.boundary is not None and spec.boundary.w > 0 and spec.boundary.h > 0
+
+
+def check_fit(spec: Spec) -> Iterator[Diagnostic]:
+    """E206, E207: each room, and all rooms together, fit in the boundary."""
+    if not _boundary_ok(spec):
+        return
+    bw, bh = spec.boundary.w, spec.boundary.h
+    total = 0.0
+    counted = True
+    for room in spec.rooms:
+        if not (room.min_w > 0 and room.min_h > 0):
+            counted = False
+            continue
+        total += room.min_w * room.min_h
+        a, b = room.min_w, room.min_h
+        if not ((a <= bw and b <= bh) or (b <= bw and a <= bh)):
+            yield _diag(spec, E_ROOM_TOO_BIG,
+                        f"room `{room.id}` needs at least {_n(a)} x {_n(b)} m, which does not fit in the "
+                        f"{_n(bw)} x {_n(bh)} m boundary",
+                        _span(room, "id"), "too big for the boundary",
+                        "lower the room's minimum sizes or enlarge the boundary")  # fmt: skip
+    free = bw * bh - _obstacle_area_inside(spec)
+    if counted and total > free * (1 + 1e-9):
+        label = "boundary" if not spec.boundary.obstacles else "boundary minus obstacles"
+        yield _diag(spec, E_AREA_TOO_BIG,
+                    f"rooms need at least {total:.2f} m² but the {label} has only {free:.2f} m²",
+                    _span(spec.boundary), "too small for the rooms",
+                    f"enlarge the boundary (for example to {_n(round(math.sqrt(total / free) * bw + 0.05, 1))} x "
+                    f"{_n(round(math.sqrt(total / free) * bh + 0.05, 1))}) or lower the rooms' minimum sizes")  # fmt: skip
+
+
+def check_doors(spec: Spec) -> Iterator[Diagnostic]:
+    """E216, E208: every door is positive and fits on a side of both of its rooms (5.9)."""
+    rooms = _rooms_by_id(spec)
+    utilization = spec.settings.door_utilization
+    for adjacency in spec.adjacencies:
+        if adjacency.door <= 0:
+            yield _diag(spec, E_NOT_POSITIVE, f"door between `{adjacency.a}` and `{adjacency.b}` is "
+                        f"{_n(adjacency.door)} m, not positive", _span(adjacency, "door"), "must be > 0",
+                        "`mina` is the door width in metres, usually 0.9")  # fmt: skip
+            continue
+        if adjacency.a == adjacency.b or utilization <= 0:
+            continue
+        wall = adjacency.door / utilization
+        for room_id in (adjacency.a, adjacency.b):
+            room = rooms.get(room_id)
+            if room is None or not _room_bounds_ok(room):
+                continue
+            longest = max(room.max_w, room.max_h)
+            if wall > longest * (1 + 1e-12):
+                need = (f"a shared wall of {_n(wall)} m (door {_n(adjacency.door)} / door_utilization "
+                        f"{_n(utilization)})" if utilization != 1 else f"a shared wall of {_n(wall)} m")  # fmt: skip
+                yield _diag(spec, E_DOOR_TOO_WIDE,
+                            f"door between `{adjacency.a}` and `{adjacency.b}` needs {need}, longer than "
+                            f"any side of `{room_id}` (at most {_n(longest)} m)",
+                            _span(adjacency, "door"), "too wide for `" + room_id + "`",
+                            f"use a door of at most {_n(longest * utilization)} m or let `{room_id}` grow")  # fmt: skip
+                break
+
+
+def _inside(x: float, y: float, w: float, h: float) -> bool:
+    return 0 <= x <= w and 0 <= y <= h
+
+
+def _obstacle_at(spec: Spec, x: float, y: float):
+    for o in spec.boundary.obstacles:
+        if o.x < x < o.x + o.w and o.y < y < o.y + o.h:
+            return o
+    return None
+
+
+def check_points(spec: Spec) -> Iterator[Diagnostic]:
+    """E209-E212, E217: positions and connection points are reachable."""
+    if not _boundary_ok(spec):
+        return
+    bw, bh = spec.boundary.w, spec.boundary.h
+    extent = f"0..{_n(bw)} x 0..{_n(bh)}"
+    for p in spec.positions:
+        if not _inside(p.x, p.y, bw, bh):
+            yield _diag(spec, E_POSITION_OUTSIDE,
+                        f"position ({_n(p.x)}, {_n(p.y)}) of `{p.room}` is outside the boundary ({extent})",
+                        Span(_span(p, "x").line, _span(p, "x").col, _span(p, "y").end_line, _span(p, "y").end_col),
+                        "outside the boundary", "coordinates are metres from the bottom-left corner, y up")  # fmt: skip
+        elif (o := _obstacle_at(spec, p.x, p.y)) is not None:
+            yield _diag(spec, E_POSITION_IN_OBSTACLE,
+                        f"position ({_n(p.x)}, {_n(p.y)}) of `{p.room}` is inside obstacle `{o.id}`",
+                        Span(_span(p, "x").line, _span(p, "x").col, _span(p, "y").end_line, _span(p, "y").end_col),
+                        f"inside `{o.id}`", "move the point out of the obstacle")  # fmt: skip
+    rooms = _rooms_by_id(spec)
+    for c in spec.connections:
+        reported = False
+        for index, (x, y, fx, fy) in enumerate(((c.x1, c.y1, "x1", "y1"), (c.x2, c.y2, "x2", "y2")), start=1):
+            span = Span(_span(c, fx).line, _span(c, fx).col, _span(c, fy).end_line, _span(c, fy).end_col)
+            if not _inside(x, y, bw, bh):
+                reported = True
+                yield _diag(spec, E_CONNECTION_OUTSIDE,
+                            f"connection point {index} ({_n(x)}, {_n(y)}) of `{c.room}` is outside the boundary ({extent})",
+                            span, "outside the boundary", "coordinates are metres from the bottom-left corner, y up")  # fmt: skip
+            elif (o := _obstacle_at(spec, x, y)) is not None:
+                reported = True
+                yield _diag(spec, E_CONNECTION_IN_OBSTACLE,
+                            f"connection point {index} ({_n(x)}, {_n(y)}) of `{c.room}` is inside obstacle `{o.id}`",
+                            span, f"inside `{o.id}`", "move the point out of the obstacle")  # fmt: skip
+        room = rooms.get(c.room)
+        if reported or room is None or not _room_bounds_ok(room):
+            continue
+        dx, dy = abs(c.x2 - c.x1), abs(c.y2 - c.y1)
+        if not ((dx <= room.max_w and dy <= room.max_h) or (dx <= room.max_h and dy <= room.max_w)):
+            yield _diag(spec, E_POINTS_TOO_FAR,
+                        f"`{c.room}` cannot cover both connection points: they are {_n(dx)} x {_n(dy)} m apart "
+                        f"but the room is at most {_n(room.max_w)} x {_n(room.max_h)} m",
+                        Span(_span(c, "x1").line, _span(c, "x1").col, _span(c, "y2").end_line, _span(c, "y2").end_col),
+                        "too far apart", f"move the points closer or raise `{c.room}`'s maximum size")  # fmt: skip
+    for hint in spec.hints:
+        if hint.w <= 0 or hint.h <= 0:
+            field = "w" if hint.w <= 0 else "h"
+            yield _diag(spec, E_NOT_POSITIVE, f"hint for `{hint.room}` has {field} {_n(getattr(hint, field))}, not positive",
+                        _span(hint, field), "must be > 0")  # fmt: skip
+        elif hint.x < 0 or hint.y < 0 or hint.x + hint.w > bw or hint.y + hint.h > bh:
+            yield _diag(spec, W_HINT_OUTSIDE,
+                        f"hint for `{hint.room}` ({_n(hint.x)}..{_n(hint.x + hint.w)} x "
+                        f"{_n(hint.y)}..{_n(hint.y + hint.h)}) is not inside the boundary ({extent})",
+                        _span(hint), "outside the boundary", "hints are only a starting point; fix or drop it",
+                        warning=True)  # fmt: skip
+
+
+# ===== Topology =====
+
+
+def _room_graph(spec: Spec) -> tuple[nx.Graph, dict[frozenset[str], Adjacency]]:
+    rooms = _rooms_by_id(spec)
+    graph = nx.Graph()
+    graph.add_nodes_from(rooms)
+    edges: dict[frozenset[str], Adjacency] = {}
+    for adjacency in spec.adjacencies:
+        if adjacency.a in rooms and adjacency.b in rooms and adjacency.a != adjacency.b:
+            graph.add_edge(adjacency.a, adjacency.b)
+            edges.setdefault(frozenset((adjacency.a, adjacency.b)), adjacency)
+    return graph, edges
+
+
+def check_planarity(spec: Spec) -> Iterator[Diagnostic]:
+    """E215: rooms that touch form a planar graph; name a Kuratowski subgraph if not."""
+    graph, edges = _room_graph(spec)
+    planar, certificate = nx.check_planarity(graph, counterexample=True)
+    if planar:
+        return
+    names = sorted(certificate.nodes)
+    offending = [edges[frozenset(e)] for e in certificate.edges if frozenset(e) in edges]
+    last = max(offending, key=lambda a: (_span(a).line, _span(a).col))
+    kind = "five mutually adjacent rooms (K5)" if len(names) == 5 and certificate.number_of_edges() == 10 else (
+        "two groups of three rooms each adjacent to all of the other group (K3,3)"
+        if len(names) == 6 and certificate.number_of_edges() == 9 else "a subdivided K5 or K3,3")  # fmt: skip
+    yield _diag(spec, E_NOT_PLANAR,
+                "the adjacencies cannot all be realised by touching rectangles: the room graph is not planar",
+                _span(last), "closes a non-planar subgraph",
+                "drop or reroute an adjacency among the rooms in the note (e.g. through a corridor)",
+                (f"rooms {', '.join(f'`{n}`' for n in names)} form {kind}",))  # fmt: skip
+
+
+def check_components(spec: Spec) -> Iterator[Diagnostic]:
+    """W301: every room is reachable from every other through adjacencies."""
+    graph, _ = _room_graph(spec)
+    if graph.number_of_nodes() < 2:
+        return
+    components = list(nx.connected_components(graph))
+    if len(components) < 2:
+        return
+    rooms = _rooms_by_id(spec)
+    order = {room_id: index for index, room_id in enumerate(rooms)}
+    components.sort(key=lambda c: min(order[r] for r in c))
+    main = components[0]
+    for component in components[1:]:
+        members = sorted(component, key=order.__getitem__)
+        first = rooms[members[0]]
+        shown = ", ".join(f"`{m}`" for m in members[:6]) + (", ..." if len(members) > 6 else "")
+        yield _diag(spec, W_COMPONENTS,
+                    f"room{'s' if len(members) > 1 else ''} {shown} cannot be reached from `{next(iter(sorted(main, key=order.__getitem__)))}`",
+                    _span(first, "id"), "not connected to the rest",
+                    "add an adjacency joining this group to the others",
+                    (f"the room graph has {len(components)} separate parts",), warning=True)  # fmt: skip
+
+
+CHECKS = (
+    check_duplicate_ids,
+    check_references,
+    check_repeats,
+    check_room_sizes,
+    check_boundary,
+    check_fit,
+    check_doors,
+    check_points,
+    check_planarity,
+    check_components,
+)
+"""Every check, in order. Each is pure: Spec -> iterator of Diagnostic."""
+
+
+def check_spec(spec: Spec) -> list[Diagnostic]:
+    """Run every check and return all diagnostics sorted by position."""
+    diagnostics: list[Diagnostic] = []
+    for check in CHECKS:
+        diagnostics.extend(check(spec))
+    diagnostics.sort(key=Diagnostic.sort_key)
+    return diagnostics
+

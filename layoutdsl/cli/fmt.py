@@ -1,0 +1,87 @@
+"""`layoutdsl fmt FILE...`: print (or --check, or --write) the canonical form of specs."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from layoutdsl import exitcodes
+from layoutdsl.atomic import write_text_atomic
+from layoutdsl.cli.lint import read_input
+from layoutdsl.diagnostics import has_errors
+from layoutdsl.format import format_spec
+from layoutdsl.parser import parse_source
+from layoutdsl.render import render_full
+
+
+def add_parser(subparsers) -> argparse.ArgumentParser:
+    """Register the `fmt` subcommand."""
+    parser = subparsers.add_parser(
+        "fmt",
+        help="print specs in canonical form",
+        description=(
+            "Print the canonical form of layout specs (thesis section order, single spaces, "
+            "shortest exact numbers). Comments are not kept: --write refuses a file that "
+            "has comments unless --drop-comments is given."
+        ),
+        epilog=exitcodes.EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("files", nargs="+", metavar="FILE", help="spec files; `-` reads standard input")
+    mode = parser.add_mutually_exclusive_group()
+    mode.add_argument("--check", action="store_true", help="exit 1 if a file is not in canonical form")
+    mode.add_argument("--write", action="store_true", help="rewrite files in place (atomically)")
+    parser.add_argument("--drop-comments", action="store_true", help="allow --write to drop comments")
+    parser.add_argument("--stdin-filename", metavar="NAME", default=None, help="name for standard input")
+    parser.set_defaults(run=run)
+    return parser
+
+
+def _has_comments(text: str) -> bool:
+    from layoutdsl.parser import _comment_column
+
+    return any(_comment_column(line) for line in text.split("\n"))
+
+
+def run(args: argparse.Namespace) -> int:
+    """Format every file; errors in a spec are printed to stderr and the file is left alone."""
+    status = exitcodes.OK
+    for path in args.files:
+        try:
+            source = read_input(path, args.stdin_filename)
+        except (OSError, ValueError) as error:
+            reason = error.strerror if isinstance(error, OSError) and error.strerror else str(error)
+            print(f"layoutdsl fmt: cannot read {path}: {reason}", file=sys.stderr)
+            status = exitcodes.USAGE
+            continue
+        spec, diagnostics = parse_source(source)
+        if spec is None or has_errors(diagnostics):
+            sys.stderr.write(render_full(diagnostics, {source.path: source}))
+            status = max(status, exitcodes.SPEC_ERRORS)
+            continue
+        text = format_spec(spec)
+        if args.check:
+            if text != source.text:
+                print(f"would reformat {source.path}", file=sys.stderr)
+                status = max(status, exitcodes.SPEC_ERRORS)
+        elif args.write:
+            if text == source.text:
+                continue
+            if path == "-":
+                sys.stdout.write(text)
+                continue
+            if _has_comments(source.text) and not args.drop_comments:
+                print(f"layoutdsl fmt: {path} has comments, which fmt does not keep; "
+                      "rerun with --drop-comments to rewrite it anyway", file=sys.stderr)  # fmt: skip
+                status = exitcodes.USAGE
+                continue
+            try:
+                write_text_atomic(path, text)
+            except OSError as error:
+                print(f"layoutdsl fmt: cannot write {path}: {error.strerror or error}", file=sys.stderr)
+                status = exitcodes.USAGE
+                continue
+            print(f"reformatted {path}", file=sys.stderr)
+        else:
+            sys.stdout.write(text)
+    return status
