@@ -69,3 +69,21 @@ def register(
 
 def has_errors(diagnostics: list[Diagnostic] | tuple[Diagnostic, ...]) -> bool:
     return any(d.is_error for d in diagnostics)
+
+
+CODE_MODULES = ("layoutdsl.parser", "layoutdsl.build", "layoutdsl.check", "layoutdsl.importer", "layoutdsl.explain")
+"""Modules that register codes at import time; `load_all_codes` imports them all."""
+
+
+def load_all_codes() -> dict[str, CodeDoc]:
+    """Import every module that registers codes, so CODES is complete; returns CODES."""
+    import importlib
+
+    for name in CODE_MODULES:
+        try:
+            importlib.import_module(name)
+        except ModuleNotFoundError as error:
+            # Tolerated only while a stage is still being written (removed at integration).
+            if error.name != name:
+                raise
+    return CODES
