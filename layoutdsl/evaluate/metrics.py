@@ -1,0 +1,89 @@
+"""Areas and room sizes of a plan, in square metres and metres (seed §5.3.1, §6.1.1)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from layoutdsl.building import Building
+from layoutdsl.evaluate.topology import room_ids
+
+
+def _shoelace(points) -> float:
+    total = 0.0
+    n = len(points)
+    for i in range(n):
+        a, b = points[i], points[(i + 1) % n]
+        total += a.x * b.y - b.x * a.y
+    return abs(total) / 2.0
+
+
+@dataclass(frozen=True, slots=True)
+class PlanAreas:
+    """Total room area (sum of room polygons) and the area of the plan's bounding box."""
+
+    room_area_m2: float
+    bbox_area_m2: float
+    bbox_width_m: float
+    bbox_height_m: float
+
+
+def plan_areas(building: Building) -> PlanAreas:
+    """Room and bounding-box areas of a plan in m²."""
+    s = building.metres_per_unit
+    room_area = sum(_shoelace(space.polygon) for space in building.spaces if len(space.polygon) >= 3)
+    xs = [p.x for space in building.spaces for p in space.polygon] or [0.0]
+    ys = [p.y for space in building.spaces for p in space.polygon] or [0.0]
+    width, height = (max(xs) - min(xs)) * s, (max(ys) - min(ys)) * s
+    return PlanAreas(room_area * s * s, width * height, width, height)
+
+
+def room_sizes(building: Building) -> dict[str, tuple[float, float]]:
+    """Report id -> rectangularized (w, h) in metres (§5.3.1): the bounding box scaled by
+    sqrt(polygon area / box area), the target the importer gives the room. For a
+    rectangular room (every generated one) that is its own width and height."""
+    s = building.metres_per_unit
+    ids = room_ids(building)
+    sizes = {}
+    for space in building.spaces:
+        bb = space.bbox
+        box = bb.width * bb.height
+        area = _shoelace(space.polygon) if len(space.polygon) >= 3 else box
+        ratio = math.sqrt(area / box) if box > 0 else 1.0
+        sizes[ids[space.id]] = (bb.width * ratio * s, bb.height * ratio * s)
+    return sizes
+
+
+@dataclass(frozen=True, slots=True)
+class SizeDeviation:
+    """Relative deviation of generated room sides from the original targets."""
+
+    mean: float
+    max: float
+    worst_room: str | None
+    per_room: dict[str, tuple[float, float]]
+    """Room -> (relative deviation of the side matched to target w, of the side matched to h)."""
+    unmatched: tuple[str, ...]
+    """Original rooms the generated plan lacks."""
+
+
+def size_deviation(original: dict[str, tuple[float, float]], generated: dict[str, tuple[float, float]]) -> SizeDeviation:
+    """Orientation-agnostic: each room is compared in the orientation (w, h) or (h, w)
+    that deviates least in total, as the MIQP's orientation binary allows (5.3)."""
+    per_room: dict[str, tuple[float, float]] = {}
+    for room, (tw, th) in original.items():
+        if room not in generated:
+            continue
+        w, h = generated[room]
+        straight = (abs(w - tw) / tw, abs(h - th) / th)
+        turned = (abs(h - tw) / tw, abs(w - th) / th)
+        per_room[room] = straight if sum(straight) <= sum(turned) else turned
+    values = [v for pair in per_room.values() for v in pair]
+    worst = max(per_room, key=lambda r: max(per_room[r]), default=None)
+    return SizeDeviation(
+        mean=sum(values) / len(values) if values else 0.0,
+        max=max(values, default=0.0),
+        worst_room=worst,
+        per_room=per_room,
+        unmatched=tuple(sorted(set(original) - set(generated))),
+    )

@@ -1,0 +1,154 @@
+"""Everything measured on one plan on its own: areas, sizes, graph, entrance paths, exploration.
+
+The report (report.py) then compares the generated plans' measures with the original's.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import networkx as nx
+import numpy as np
+
+from layoutdsl.building import Building
+from layoutdsl.evaluate.explore import ExploreSettings, ExplorationResult, explore
+from layoutdsl.evaluate.grid import coarsen, inflate, nearest_cell, room_cells
+from layoutdsl.evaluate.metrics import PlanAreas, plan_areas, room_sizes
+from layoutdsl.evaluate.paths import DistanceGrid, shortest_path
+from layoutdsl.evaluate.topology import room_graph, room_ids, sorted_rooms
+from layoutdsl.raster import rasterize_building
+
+
+@dataclass(frozen=True, slots=True)
+class EvaluateOptions:
+    """How plans are measured; every field ends up in the report."""
+
+    robot_radius_m: float = 0.2
+    resolution_m: float = 0.05
+    """Cell size of the occupancy grid (the Stage/ROS map) and of the entrance paths."""
+    explore_resolution_m: float = 0.1
+    """Cell size of the exploration grid: the map coarsened (a cell is a wall when any of
+    its fine cells is) by a whole factor; never finer than `resolution_m`."""
+    seed: int = 0
+    start_room: str | None = None
+    """Room the exploration starts in (the same in every variant); default the first entrance."""
+    explore: ExploreSettings = field(default_factory=ExploreSettings)
+
+    @property
+    def coarsening(self) -> int:
+        return max(1, round(self.explore_resolution_m / self.resolution_m))
+
+
+@dataclass(frozen=True, slots=True)
+class RoomAnchor:
+    """Where a path or exploration starts in a room: its centre, or the nearest free cell."""
+
+    room: str
+    cell: tuple[int, int]
+    offset_m: float
+    """Distance from the room's centroid to the cell used (0 when the centroid is free)."""
+    inside_room: bool
+
+
+@dataclass(frozen=True, slots=True)
+class PlanMeasures:
+    """The measures of one plan."""
+
+    name: str
+    rooms: int
+    graph: nx.Graph
+    areas: PlanAreas
+    sizes: dict[str, tuple[float, float]]
+    entrances: tuple[str, ...]
+    anchors: dict[str, RoomAnchor]
+    path_lengths: dict[tuple[str, str], float | None]
+    """Entrance pair (a, b), a before b -> any-angle path length in metres; None if unreachable."""
+    grid_path_lengths: dict[tuple[str, str], float | None]
+    """The same on the 16-connected grid (an upper bound, <= +2.75 %)."""
+    exploration: ExplorationResult | None
+    explore_start: RoomAnchor | None
+    explore_note: str = ""
+    grid_shape: tuple[int, int] = (0, 0)
+    free_area_m2: float = 0.0
+    occupied_preview: np.ndarray | None = None
+    """The exploration grid (for plots), row 0 at the top."""
+
+
+def _anchor(room: str, index: int, rooms, traversable: np.ndarray, resolution: float) -> RoomAnchor | None:
+    centre = rooms.centres[index]
+    in_room = rooms.labels == index
+    cell = nearest_cell(traversable, centre, within=in_room)
+    if cell is None:
+        return None
+    offset = math.hypot(cell[0] - centre[0], cell[1] - centre[1]) * resolution
+    return RoomAnchor(room, cell, offset, bool(in_room[cell]))
+
+
+def measure_plan(building: Building, options: EvaluateOptions = EvaluateOptions(), name: str | None = None) -> PlanMeasures:
+    """Measure one plan (see module doc)."""
+    ids = room_ids(building)
+    res = options.resolution_m
+    grid = rasterize_building(building, res)
+    traversable = ~inflate(grid.occupied, options.robot_radius_m, res)
+    rooms = room_cells(building, grid, ids)
+    graph = room_graph(building)
+    entrances = tuple(sorted_rooms(room for room in rooms.ids if graph.nodes[room]["rtype"] == "E"))
+    anchors: dict[str, RoomAnchor] = {}
+    for room in entrances:
+        anchor = _anchor(room, rooms.ids.index(room), rooms, traversable, res)
+        if anchor is not None:
+            anchors[room] = anchor
+    lengths: dict[tuple[str, str], float | None] = {}
+    grid_lengths: dict[tuple[str, str], float | None] = {}
+    dg = DistanceGrid(traversable) if len(entrances) > 1 else None
+    for i, a in enumerate(entrances):
+        later = entrances[i + 1 :]
+        if not later:
+            break
+        dist = dg.distances([anchors[a].cell]) if a in anchors else None
+        for b in later:
+            result = None
+            if dist is not None and b in anchors:
+                result = shortest_path(dg, anchors[a].cell, anchors[b].cell, dist)
+            lengths[(a, b)] = None if result is None else result.length * res
+            grid_lengths[(a, b)] = None if result is None else result.grid_length * res
+
+    # exploration on the coarser grid
+    factor = options.coarsening
+    coarse_res = res * factor
+    occupied = coarsen(grid.occupied, factor)
+    coarse_trav = ~inflate(occupied, options.robot_radius_m, coarse_res)
+    coarse_rooms = room_cells(building, grid, ids, factor) if factor > 1 else rooms
+    start_room = options.start_room or (entrances[0] if entrances else sorted_rooms(rooms.ids)[0])
+    exploration = None
+    start_anchor = None
+    note = ""
+    if start_room not in coarse_rooms.ids:
+        note = f"start room `{start_room}` is not in this plan"
+    else:
+        start_anchor = _anchor(start_room, coarse_rooms.ids.index(start_room), coarse_rooms, coarse_trav, coarse_res)
+        if start_anchor is None:
+            note = f"no free cell for the robot in `{start_room}`"
+        else:
+            exploration = explore(
+                occupied, coarse_res, start_anchor.cell, options.robot_radius_m, options.seed,
+                options.explore, traversable=coarse_trav,
+            )
+    return PlanMeasures(
+        name=name or building.name,
+        rooms=len(building.spaces),
+        graph=graph,
+        areas=plan_areas(building),
+        sizes=room_sizes(building),
+        entrances=entrances,
+        anchors=anchors,
+        path_lengths=lengths,
+        grid_path_lengths=grid_lengths,
+        exploration=exploration,
+        explore_start=start_anchor,
+        explore_note=note,
+        grid_shape=grid.shape,
+        free_area_m2=float((~grid.occupied).sum()) * res * res,
+        occupied_preview=occupied,
+    )
