@@ -1,0 +1,272 @@
+"""`layoutdsl compile SPEC.lay -o OUTDIR`: lint, solve, verify, write the layout's files.
+
+Flags override the spec's settings. Diagnostics go to stderr, progress too (unless -q); the
+one-screen summary goes to stdout. Outputs (`NAME.layout.json` plus the emitters' files) are
+written all-or-nothing, and only for a verified layout.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import sys
+from pathlib import Path
+
+from layoutdsl import exitcodes
+
+EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
+STRATEGIES = ("auto", "thesis", "cycles")
+
+
+def _positive_float(text: str) -> float:
+    value = float(text)
+    if not math.isfinite(value) or value <= 0:
+        raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
+    return value
+
+
+def _non_negative_float(text: str) -> float:
+    value = float(text)
+    if not math.isfinite(value) or value < 0:
+        raise argparse.ArgumentTypeError(f"expected a number >= 0, got {text!r}")
+    return value
+
+
+def _positive_int(text: str) -> int:
+    value = int(text)
+    if value <= 0:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+    return value
+
+
+def _non_negative_int(text: str) -> int:
+    value = int(text)
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
+    return value
+
+
+def add_parser(subparsers) -> None:
+    """Register the `compile` subcommand."""
+    parser = subparsers.add_parser(
+        "compile",
+        help="solve a spec into a verified layout and write its files",
+        description=(
+            "Compile a layout spec: lint it, solve the thesis' MIQP (seed §5.5.1) with SCIP, "
+            "verify the result independently and write OUTDIR/NAME.layout.json plus the "
+            "chosen output formats. Flags override the spec's settings. With a wall-clock "
+            "time limit as the stopping rule, runs may differ; with a gap, node limit or "
+            "solution limit, the same spec and seed give the same layout."
+        ),
+        epilog=exitcodes.EPILOG,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("spec", help="spec file (.lay), or - for standard input")
+    parser.add_argument("-o", "--output", required=True, metavar="OUTDIR", help="directory for the outputs")
+    parser.add_argument("--time-limit", type=_positive_float, metavar="S",
+                        help="wall-clock seconds for the whole solve (setting time_limit)")
+    parser.add_argument("--gap", type=_non_negative_float, metavar="G",
+                        help="stop at this relative optimality gap, e.g. 0.01 (setting gap)")
+    parser.add_argument("--seed", type=_non_negative_int, metavar="N", help="random seed (setting seed)")
+    parser.add_argument("--emphasis", choices=EMPHASES,
+                        help="SCIP emphasis (setting emphasis; default heuristics)")
+    parser.add_argument("--node-limit", type=_positive_int, metavar="N",
+                        help="stop after N branch-and-bound nodes: a deterministic stopping rule")
+    parser.add_argument("--solution-limit", type=_positive_int, metavar="N",
+                        help="stop after N improving solutions: a deterministic stopping rule")
+    parser.add_argument("--emit", default="xml,png,world,map", metavar="FORMATS",
+                        help="comma-separated output formats: xml, png, world, map (default all)")
+    parser.add_argument("--robot-room", metavar="ID", help="room the simulated robot starts in")
+    parser.add_argument("--variants", type=_positive_int, metavar="N",
+                        help="write N different verified layouts, NAME-1.* ... NAME-N.*")
+    parser.add_argument("--strategy", choices=STRATEGIES, default="auto",
+                        help="auto: construct a first layout, then SCIP; thesis: the thesis' "
+                        "formulation solved by SCIP from scratch; cycles: cycle decomposition")
+    parser.add_argument("--stdin-filename", metavar="NAME", help="the name messages use for standard input")
+    parser.add_argument("--format", choices=("full", "concise", "json"), default="full",
+                        help="how diagnostics are printed (default full)")
+    parser.add_argument("-q", "--quiet", action="store_true", help="no progress lines on stderr")
+    parser.set_defaults(run=run)
+
+
+def _print_diagnostics(diagnostics, sources, style: str) -> None:
+    from layoutdsl import render
+
+    if not diagnostics:
+        return
+    if style == "json":
+        text = render.render_json(diagnostics)
+    elif style == "concise":
+        text = render.render_concise(diagnostics)
+    else:
+        text = render.render_full(diagnostics, sources)
+    sys.stderr.write(text)
+    sys.stderr.flush()
+
+
+def _error(message: str) -> int:
+    print(f"layoutdsl compile: error: {message}", file=sys.stderr)
+    return exitcodes.USAGE
+
+
+def run(args: argparse.Namespace) -> int:
+    """Compile one spec; exit 0 with a layout, 1 spec errors, 2 usage/I/O, 3 no layout."""
+    from layoutdsl.api import lint_source, read_source
+    from layoutdsl.diagnostics import has_errors
+    from layoutdsl.source import Source
+
+    try:
+        if args.spec == "-":
+            source = Source(args.stdin_filename or "<stdin>", sys.stdin.read())
+        else:
+            source = read_source(args.spec)
+    except (OSError, UnicodeDecodeError) as error:
+        reason = getattr(error, "strerror", None) or str(error)
+        return _error(f"cannot read `{args.spec}`: {reason}")
+    spec, diagnostics = lint_source(source)
+    sources = {source.path: source}
+    _print_diagnostics(diagnostics, sources, args.format)
+    if spec is None or has_errors(diagnostics):
+        return exitcodes.SPEC_ERRORS
+
+    formats = _formats(args.emit)
+    if isinstance(formats, str):
+        return _error(formats)
+    if args.robot_room is not None and spec.room(args.robot_room) is None:
+        known = ", ".join(spec.room_ids[:10])
+        return _error(f"--robot-room `{args.robot_room}` is not a room of the spec (rooms: {known})")
+    outdir = Path(args.output)
+    if outdir.exists() and not outdir.is_dir():
+        return _error(f"`{outdir}` exists and is not a directory")
+
+    from layoutdsl.solve import SolveOptions
+
+    options = SolveOptions.from_settings(
+        spec.settings,
+        time_limit=args.time_limit,
+        gap=args.gap,
+        seed=args.seed,
+        emphasis=args.emphasis,
+        node_limit=args.node_limit,
+        solution_limit=args.solution_limit,
+        quiet=args.quiet,
+        strategy=args.strategy,
+    )
+    if args.variants:
+        return _run_variants(spec, args, options, outdir, formats)
+
+    from layoutdsl.compiler import compile_spec
+
+    if not args.quiet:
+        print(f"compiling `{spec.name}`: {len(spec.rooms)} rooms, time limit {options.time_limit:g} s",
+              file=sys.stderr, flush=True)
+    result = compile_spec(spec, options)
+    _print_diagnostics(result.diagnostics, sources, args.format)
+    if result.layout is None:
+        return exitcodes.NO_LAYOUT
+    try:
+        written = write_layout_files(result.layout, outdir, spec.name, formats, robot_room=args.robot_room)
+    except OSError as error:
+        return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
+    except ValueError as error:  # the emitters refuse an option (EmitError)
+        return _error(str(error))
+    print(summary(spec, result.layout, written))
+    return exitcodes.OK
+
+
+def _formats(text: str) -> tuple[str, ...] | str:
+    """The chosen formats, or an error message."""
+    try:
+        from layoutdsl.emit import parse_formats
+    except ImportError:
+        return ()
+    try:
+        return parse_formats(text)
+    except ValueError as error:
+        return str(error)
+
+
+def write_layout_files(layout, outdir: Path, stem: str, formats, *, robot_room: str | None = None) -> list[Path]:
+    """NAME.layout.json plus the emitters' files for `formats`, all or nothing."""
+    files: dict[str, bytes] = {f"{stem}.layout.json": layout.to_json().encode("utf-8")}
+    try:
+        from layoutdsl.emit import render_outputs, write_rendered
+    except ImportError:
+        from layoutdsl.atomic import write_files_atomic
+
+        outdir.mkdir(parents=True, exist_ok=True)
+        return write_files_atomic({outdir / name: data for name, data in files.items()})
+    if formats:
+        files.update(render_outputs(layout, stem, formats, robot_room=robot_room))
+    return write_rendered(files, outdir)
+
+
+def size_deviations(spec, layout) -> dict[str, float]:
+    """Per room: the larger relative deviation of its two sides from their targets."""
+    from layoutdsl.model import best_orientation, orientation_targets
+
+    deviations = {}
+    for room in spec.rooms:
+        placed = layout.room(room.id)
+        o = best_orientation(room, placed.w, placed.h)
+        tw, th = orientation_targets(room, o)
+        deviations[room.id] = max(abs(placed.w - tw) / tw, abs(placed.h - th) / th)
+    return deviations
+
+
+_STATUS_TEXT = {
+    "optimal": "optimal",
+    "gap_limit": "solved to the gap",
+    "time_limit": "time limit reached; the best layout found is written",
+    "node_limit": "node limit reached; the best layout found is written",
+    "solution_limit": "solution limit reached",
+    "construction": "constructed layout (SCIP found no better one in time)",
+    "interrupted": "interrupted; the best layout found is written",
+    "unknown": "solver stopped; the best layout found is written",
+}
+
+
+def summary(spec, layout, written: list[Path]) -> str:
+    """The one-screen summary printed on stdout."""
+    info = layout.solve
+    room_area = sum(r.area for r in layout.rooms)
+    boundary_area = layout.width * layout.height
+    deviations = size_deviations(spec, layout)
+    worst = max(deviations, key=lambda r: deviations[r]) if deviations else None
+    mean = sum(deviations.values()) / len(deviations) if deviations else 0.0
+    lines = [f"compiled `{layout.name}`: {len(layout.rooms)} rooms placed, {len(layout.portals)} portals"]
+    lines.append(f"  room area   {room_area:.1f} m² of {boundary_area:.1f} m² boundary "
+                 f"({100 * room_area / boundary_area:.1f} %)")
+    if worst is not None:
+        lines.append(f"  size error  mean {100 * mean:.1f} %, max {100 * deviations[worst]:.1f} % "
+                     f"(`{worst}`) from the target sizes")
+    if info is not None:
+        gap = "-" if info.gap is None else f"{100 * info.gap:.2f} %"
+        objective = "-" if info.objective is None else f"{info.objective:.4g}"
+        lines.append(f"  status      {_STATUS_TEXT.get(info.status, info.status)}")
+        first = "" if info.first_feasible_seconds is None else f", first layout after {info.first_feasible_seconds:.1f} s"
+        lines.append(f"  objective   {objective}, gap {gap}, {info.seconds:.1f} s{first} "
+                     f"({info.method}, seed {info.seed})")
+    lines.append("  wrote       " + ", ".join(str(p) for p in written))
+    return "\n".join(lines)
+
+
+def _run_variants(spec, args, options, outdir: Path, formats) -> int:
+    """--variants N: the construction helper's compile_variants writes NAME-1.* ... NAME-N.*."""
+    try:
+        from layoutdsl.variants import compile_variants
+    except ImportError:
+        return _error("--variants is not available in this build (layoutdsl.variants is missing)")
+    try:
+        result = compile_variants(spec, args.variants, seed=options.seed, options=options,
+                                  outdir=outdir, formats=formats, robot_room=args.robot_room)
+    except OSError as error:
+        return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
+    layouts = getattr(result, "layouts", result)
+    count = sum(1 for item in layouts if item is not None) if layouts is not None else 0
+    diversity = getattr(result, "diversity", None)
+    line = f"compiled `{spec.name}`: {count} of {args.variants} variants"
+    if diversity is not None:
+        line += f", diversity {diversity:.2f}"
+    print(line)
+    return exitcodes.OK if count == args.variants else exitcodes.NO_LAYOUT
