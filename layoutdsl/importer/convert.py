@@ -198,9 +198,13 @@ def convert(
             widened = True
             _widen_for_door(sides, door_side, door, room_id, label, space, filename, diagnostics)
 
-        target_w, target_h = _round(sides.target_w), _round(sides.target_h)
-        min_w, max_w = _floor(sides.min_w), _ceil(sides.max_w)
-        min_h, max_h = _floor(sides.min_h), _ceil(sides.max_h)
+        # Rounding never takes a minimum below mindim (a mindim with more than three
+        # decimals is kept as given) nor a target outside its rounded bounds.
+        min_w = max(_floor(sides.min_w), options.mindim)
+        min_h = max(_floor(sides.min_h), options.mindim)
+        max_w, max_h = _ceil(sides.max_w), _ceil(sides.max_h)
+        target_w = min(max(_round(sides.target_w), min_w), max_w)
+        target_h = min(max(_round(sides.target_h), min_h), max_h)
         # ar* from the rounded targets, so the written target is itself a feasible room.
         ar_target = max(target_w, target_h) / min(target_w, target_h)
         var_avg = (var_plus + var_minus) / 2

@@ -93,6 +93,7 @@ class _Reader:
     text: str
     positions: dict[int, tuple[int, int]]
     diagnostics: list[Diagnostic] = field(default_factory=list)
+    space_ids: dict[str, Element] = field(default_factory=dict)
 
     # ----- locations and reporting -----
 
@@ -185,7 +186,7 @@ class _Reader:
         scale = self.scale(root)
         spaces = self.spaces(root)
         if spaces is not None:
-            self.check_targets(spaces)
+            self.check_targets(spaces, self.space_ids)
         if scale is None or spaces is None or any(d.is_error for d in self.diagnostics):
             return None
         name = (root.findtext("name") or "").strip() or default_name
@@ -265,6 +266,8 @@ class _Reader:
             return None
         result: list[tuple[Space, list[tuple[Element, Element]]]] = []
         seen: dict[str, Element] = {}
+        # every id, also of spaces that failed to read: portals to them are not "unknown"
+        self.space_ids = seen
         for element in spaces_el.findall("space"):
             space_id = (element.get("id") or "").strip()
             if not space_id:
@@ -431,8 +434,7 @@ class _Reader:
             portals.append((portal, (portal_el, ids_el)))
         return portals if ok else None
 
-    def check_targets(self, spaces) -> None:
-        known = {space.id for space, _ in spaces}
+    def check_targets(self, spaces, known) -> None:
         for space, portal_elements in spaces:
             for portal_el, ids_el in portal_elements:
                 for id_el in ids_el:
