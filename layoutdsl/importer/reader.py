@@ -234,7 +234,7 @@ class _Reader:
                     break
             self.report(
                 codes.INVALID_SCALE,
-                f"implausible door size {real:g} {unit} ({real_m:g} m)",
+                f"implausible door size {real:g} {unit}" + ("" if unit == "m" else f" ({real_m:g} m)"),
                 self.span(unit_el if unit_el is not None else real_el),
                 label=f"a door is {low:g}-{high:g} m wide",
                 help=help_text,
