@@ -87,6 +87,13 @@ def _round(value: float) -> float:
     return round(value, _DIGITS)
 
 
+def _fit(start: float, length: float, limit: float) -> float:
+    """`length`, shortened by millimetres until start + length <= limit holds in floats too."""
+    while start + length > limit and length > 0:
+        length = _round(length - 10**-_DIGITS)
+    return length
+
+
 def original_room_area(building: Building) -> float:
     """Total area of the plan's room polygons in m² (what a generated layout is compared to)."""
     scale = building.metres_per_unit**2
@@ -233,13 +240,15 @@ def convert(
         )
         if options.hints:
             # The original place, in the boundary's frame: origin bottom-left, y up.
+            x = _floor((space.bbox.min_x - plan_min_x) * mpu)
+            y = _floor((plan_max_y - space.bbox.max_y) * mpu)
             hints.append(
                 Hint(
                     room=room_id,
-                    x=_floor((space.bbox.min_x - plan_min_x) * mpu),
-                    y=_floor((plan_max_y - space.bbox.max_y) * mpu),
-                    w=_floor(bbox_w),
-                    h=_floor(bbox_h),
+                    x=x,
+                    y=y,
+                    w=_fit(x, _floor(bbox_w), boundary.w),
+                    h=_fit(y, _floor(bbox_h), boundary.h),
                 )
             )
 
