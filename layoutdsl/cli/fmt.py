@@ -9,7 +9,7 @@ from layoutdsl import exitcodes
 from layoutdsl.atomic import write_text_atomic
 from layoutdsl.cli.lint import read_input
 from layoutdsl.diagnostics import has_errors
-from layoutdsl.format import format_spec
+from layoutdsl.format import format_source
 from layoutdsl.parser import parse_source
 from layoutdsl.render import render_full
 
@@ -21,8 +21,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         help="print specs in canonical form",
         description=(
             "Print the canonical form of layout specs (thesis section order, single spaces, "
-            "shortest exact numbers). Comments are not kept: --write refuses a file that "
-            "has comments unless --drop-comments is given."
+            "shortest exact numbers). Comments are kept: a comment line stays above the line "
+            "after it, a comment after values stays at the end of its line."
         ),
         epilog=exitcodes.EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -31,16 +31,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     mode = parser.add_mutually_exclusive_group()
     mode.add_argument("--check", action="store_true", help="exit 1 if a file is not in canonical form")
     mode.add_argument("--write", action="store_true", help="rewrite files in place (atomically)")
-    parser.add_argument("--drop-comments", action="store_true", help="allow --write to drop comments")
     parser.add_argument("--stdin-filename", metavar="NAME", default=None, help="name for standard input")
     parser.set_defaults(run=run)
     return parser
-
-
-def _has_comments(text: str) -> bool:
-    from layoutdsl.parser import _comment_column
-
-    return any(_comment_column(line) for line in text.split("\n"))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -59,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
             sys.stderr.write(render_full(diagnostics, {source.path: source}))
             status = max(status, exitcodes.SPEC_ERRORS)
             continue
-        text = format_spec(spec)
+        text = format_source(source)
         if args.check:
             if text != source.text:
                 print(f"would reformat {source.path}", file=sys.stderr)
@@ -69,11 +62,6 @@ def run(args: argparse.Namespace) -> int:
                 continue
             if path == "-":
                 sys.stdout.write(text)
-                continue
-            if _has_comments(source.text) and not args.drop_comments:
-                print(f"layoutdsl fmt: {path} has comments, which fmt does not keep; "
-                      "rerun with --drop-comments to rewrite it anyway", file=sys.stderr)  # fmt: skip
-                status = exitcodes.USAGE
                 continue
             try:
                 write_text_atomic(path, text)
