@@ -69,7 +69,7 @@ def write_files_atomic(files: Mapping[Path | str, bytes | str]) -> list[Path]:
     exception propagates.
     """
     targets = [Path(path) for path in files]
-    if len(set(targets)) != len(targets):
+    if len({os.path.normpath(os.path.abspath(t)) for t in targets}) != len(targets):
         raise ValueError("the same output path was given twice")
     payloads = [data.encode("utf-8") if isinstance(data, str) else data for data in files.values()]
     temps: list[Path] = []

@@ -19,7 +19,7 @@ from __future__ import annotations
 import io
 import math
 import textwrap
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from functools import cache
 
 from PIL import Image, ImageDraw, ImageFont
@@ -62,6 +62,8 @@ class Rect:
     fill: str | None
     outline: str | None = None
     width: int = 0
+    tag: str = ""
+    """What the primitive shows (`room R0`, `wall R0`, `door C0-R0`, `legend`, ...)."""
     kind: str = "rect"
 
 
@@ -73,6 +75,7 @@ class Line:
     color: str
     width: int
     dash: tuple[float, float] | None = None
+    tag: str = ""
     kind: str = "line"
 
 
@@ -86,6 +89,7 @@ class Text:
     size: int
     color: str = TEXT
     anchor: str = "mm"
+    tag: str = ""
     kind: str = "text"
 
 
@@ -191,28 +195,29 @@ def _portal_primitives(layout: Layout, portal: Portal, frame: _Frame, wall_px: i
     cx, cy = portal.centre
     items: list[Primitive] = []
     tick_px = max(1, wall_px // 2)
+    tag = f"{'door' if portal.kind == 'e' else 'implicit portal'} {portal.a}-{portal.b}"
     if portal.vertical:
         left, right = (a, b) if a.x < b.x else (b, a)
         lo, hi = max(cy - half, a.y, b.y), min(cy + half, a.y2, b.y2)
-        items.append(frame.rect(left.x2, lo, right.x, hi, fill=OPENING))
+        items.append(frame.rect(left.x2, lo, right.x, hi, fill=OPENING, tag=tag))
         if portal.kind == "e":
             for y in (lo, hi):
-                items.append(Line((frame.px(left.x2, y), frame.px(right.x, y)), WALL, tick_px))
+                items.append(Line((frame.px(left.x2, y), frame.px(right.x, y)), WALL, tick_px, tag=tag))
         else:
-            items.append(Line((frame.px(cx, lo), frame.px(cx, hi)), IMPLICIT, 1, (6.0, 4.0)))
+            items.append(Line((frame.px(cx, lo), frame.px(cx, hi)), IMPLICIT, 1, (6.0, 4.0), tag=tag))
     else:
         low, high = (a, b) if a.y < b.y else (b, a)
         lo, hi = max(cx - half, a.x, b.x), min(cx + half, a.x2, b.x2)
-        items.append(frame.rect(lo, low.y2, hi, high.y, fill=OPENING))
+        items.append(frame.rect(lo, low.y2, hi, high.y, fill=OPENING, tag=tag))
         if portal.kind == "e":
             for x in (lo, hi):
-                items.append(Line((frame.px(x, low.y2), frame.px(x, high.y)), WALL, tick_px))
+                items.append(Line((frame.px(x, low.y2), frame.px(x, high.y)), WALL, tick_px, tag=tag))
         else:
-            items.append(Line((frame.px(lo, cy), frame.px(hi, cy)), IMPLICIT, 1, (6.0, 4.0)))
+            items.append(Line((frame.px(lo, cy), frame.px(hi, cy)), IMPLICIT, 1, (6.0, 4.0), tag=tag))
     return items
 
 
-def _hatch(rect: Rect, spacing: float) -> list[Line]:
+def _hatch(rect: Rect, spacing: float, tag: str = "") -> list[Line]:
     """45° hatch lines clipped to a rectangle."""
     lines: list[Line] = []
     w, h = rect.x1 - rect.x0, rect.y1 - rect.y0
@@ -222,7 +227,7 @@ def _hatch(rect: Rect, spacing: float) -> list[Line]:
         start = (rect.x0 + max(0.0, c), rect.y0 + max(0.0, -c))
         end_t = min(w - c, h)
         end = (rect.x0 + c + end_t, rect.y0 + end_t)
-        lines.append(Line((start, end), OBSTACLE_HATCH, 1))
+        lines.append(Line((start, end), OBSTACLE_HATCH, 1, tag=tag))
         c += spacing
     return lines
 
@@ -288,7 +293,7 @@ def _legend(layout: Layout, x0: float, y0: float, font: int, scale: float, max_w
     x += bar_px + text_width(caption, font) / 2 + font
     used_w = max(used_w, x - x0)
     height = (y - y0) + row_h + font
-    return items, used_w, height
+    return [replace(item, tag="legend") for item in items], used_w, height
 
 
 def drawing(layout: Layout, px_per_m: float | None = None) -> Drawing:
@@ -304,21 +309,22 @@ def drawing(layout: Layout, px_per_m: float | None = None) -> Drawing:
 
     items: list[Primitive] = []
     title_font = base_font + 2
-    items.append(Text(margin, margin / 2, layout.name, title_font, TEXT, "lm"))
+    items.append(Text(margin, margin / 2, layout.name, title_font, TEXT, "lm", tag="title"))
     # the boundary the rooms had to fit in, dashed: empty space inside it is not a room
     bx0, by0 = frame.px(0.0, layout.height)
     bx1, by1 = frame.px(layout.width, 0.0)
-    items.append(Line(((bx0, by0), (bx1, by0), (bx1, by1), (bx0, by1), (bx0, by0)), BOUNDARY, 1, (8.0, 6.0)))
+    items.append(Line(((bx0, by0), (bx1, by0), (bx1, by1), (bx0, by1), (bx0, by0)), BOUNDARY, 1, (8.0, 6.0), tag="boundary"))
     # walls: each room grown by a wall thickness, then the interiors painted over them, so
     # shared walls are exactly the gap between rooms and outer walls are one wall thick
     for room in layout.rooms:
-        items.append(frame.rect(room.x - wall, room.y - wall, room.x2 + wall, room.y2 + wall, fill=WALL))
+        items.append(frame.rect(room.x - wall, room.y - wall, room.x2 + wall, room.y2 + wall, fill=WALL, tag=f"wall {room.id}"))
     for room in layout.rooms:
-        items.append(frame.rect(room.x, room.y, room.x2, room.y2, fill=ROOM_TINTS.get(room.rtype, ROOM_TINTS["R"])))
+        items.append(frame.rect(room.x, room.y, room.x2, room.y2, fill=ROOM_TINTS.get(room.rtype, ROOM_TINTS["R"]), tag=f"room {room.id}"))
     for obstacle in layout.obstacles:
-        box = frame.rect(obstacle.x, obstacle.y, obstacle.x + obstacle.w, obstacle.y + obstacle.h, fill=OBSTACLE_FILL, outline=WALL, width=1)
+        tag = f"obstacle {obstacle.id}"
+        box = frame.rect(obstacle.x, obstacle.y, obstacle.x + obstacle.w, obstacle.y + obstacle.h, fill=OBSTACLE_FILL, outline=WALL, width=1, tag=tag)
         items.append(box)
-        items.extend(_hatch(box, max(6.0, scale * 0.3)))
+        items.extend(_hatch(box, max(6.0, scale * 0.3), tag))
     for portal in layout.portals:
         items.extend(_portal_primitives(layout, portal, frame, wall_px))
     for room in layout.rooms:
@@ -329,7 +335,7 @@ def drawing(layout: Layout, px_per_m: float | None = None) -> Drawing:
         line_h = size * LINE_HEIGHT
         first_y = cy - line_h * (len(lines) - 1) / 2
         for index, line in enumerate(lines):
-            items.append(Text(cx, first_y + index * line_h, line, size))
+            items.append(Text(cx, first_y + index * line_h, line, size, tag=f"label {room.id}"))
 
     legend_top = margin + plan_h + base_font
     legend_items, legend_w, legend_h = _legend(layout, margin, legend_top, base_font, scale, max(plan_w, 600.0))

@@ -1,0 +1,165 @@
+"""The shared rasterization: topology equals the layout's, framing, frames of reference."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from _emit_support import CASES, assert_topology_matches, load_case, pair_room, region_meetings, school_layout
+
+from layoutdsl.building import BoundingBox, Building, LineSegment, Point, Space
+from layoutdsl.layout import Layout, PlacedRoom, make_portal
+from layoutdsl.raster import OccupancyGrid, rasterize_building, rasterize_layout
+
+# Layouts whose bitmap topology must equal their portal graph. The lead extends this with
+# the compiled layout of every spec in specs/ (a parametrization over compiled layouts).
+TOPOLOGY_LAYOUTS = {
+    **{case.name: (lambda case=case: load_case(case)) for case in CASES},
+    "pair": pair_room,
+    "school_106_rooms": school_layout,
+    "school_thin_walls": lambda: school_layout(2, 5, walldim=0.01),
+}
+
+
+@pytest.mark.parametrize("name", sorted(TOPOLOGY_LAYOUTS))
+def test_rooms_meet_exactly_where_the_layout_has_portals(name: str) -> None:
+    assert_topology_matches(TOPOLOGY_LAYOUTS[name]())
+
+
+@pytest.mark.parametrize("resolution", [0.02, 0.05, 0.1])
+def test_topology_holds_at_other_resolutions(resolution: float) -> None:
+    assert_topology_matches(load_case(CASES[0].parent / "small_office"), resolution)
+
+
+def test_the_topology_check_sees_a_missing_door_and_an_extra_opening() -> None:
+    layout = pair_room()
+    closed = Layout(layout.name, layout.width, layout.height, layout.walldim, layout.rooms, ())
+    assert region_meetings(layout, rasterize_layout(closed)) == set()
+    assert region_meetings(closed, rasterize_layout(layout)) == {frozenset(("R0", "R1"))}
+
+
+def test_a_door_opens_its_width_and_no_more() -> None:
+    layout = pair_room()  # door 0.9 m in the vertical wall x in [3.0, 3.2]
+    grid = rasterize_layout(layout, 0.05)
+    row_free = [grid.is_free(3.1, y) for y in np.arange(0.025, 3.0, 0.05)]
+    opening = sum(row_free) * 0.05
+    assert opening == pytest.approx(0.9, abs=0.05)
+    assert grid.is_free(3.1, 1.5) and not grid.is_free(3.1, 0.3) and not grid.is_free(3.1, 2.7)
+
+
+def test_walls_thinner_than_a_cell_still_separate_rooms() -> None:
+    a = PlacedRoom("R0", "A", "R", 0.0, 0.0, 2.0, 2.0)
+    b = PlacedRoom("R1", "B", "R", 2.01, 0.0, 2.0, 2.0)
+    layout = Layout("thin", 4.01, 2.0, 0.01, (a, b), ())
+    grid = rasterize_layout(layout, 0.05)
+    assert region_meetings(layout, grid) == set()
+    with_door = Layout("thin", 4.01, 2.0, 0.01, (a, b), (make_portal(a, b, "e", 0.8),))
+    assert region_meetings(with_door, rasterize_layout(with_door, 0.05)) == {frozenset(("R0", "R1"))}
+
+
+@pytest.mark.parametrize("name", ["small_office", "thin_walls", "single_room"])
+def test_grid_is_framed_by_walls_and_cropped_to_the_building(name: str) -> None:
+    layout = load_case(CASES[0].parent / name)
+    grid = rasterize_layout(layout)
+    occ = grid.occupied
+    assert occ[0, :].all() and occ[-1, :].all() and occ[:, 0].all() and occ[:, -1].all()
+    # cropped: every side of the frame is within one outer wall of a room
+    wall = max(layout.walldim, grid.resolution) + grid.resolution
+    assert grid.origin[0] >= min(r.x for r in layout.rooms) - wall - 1e-9
+    assert grid.origin[1] >= min(r.y for r in layout.rooms) - wall - 1e-9
+    assert grid.origin[0] + grid.width_m <= max(r.x2 for r in layout.rooms) + wall + 1e-9
+    assert grid.origin[1] + grid.height_m <= max(r.y2 for r in layout.rooms) + wall + 1e-9
+
+
+def test_world_and_cell_conversions_are_inverse() -> None:
+    grid = OccupancyGrid(np.zeros((4, 6), dtype=bool), 0.5, (-1.0, 2.0))
+    assert grid.world_to_cell(-1.0 + 0.1, 2.0 + 0.1) == (3, 0)  # lower-left point -> bottom row
+    assert grid.world_to_cell(1.9, 3.9) == (0, 5)
+    for row in range(4):
+        for col in range(6):
+            assert grid.world_to_cell(*grid.cell_to_world(row, col)) == (row, col)
+    assert grid.width_m == 3.0 and grid.height_m == 2.0 and grid.centre == (0.5, 3.0)
+
+
+def test_rasterizing_is_deterministic() -> None:
+    layout = school_layout(2, 4)
+    assert np.array_equal(rasterize_layout(layout).occupied, rasterize_layout(layout).occupied)
+
+
+def test_bad_resolution_is_a_value_error() -> None:
+    with pytest.raises(ValueError, match="resolution"):
+        rasterize_layout(pair_room(), 0.0)
+
+
+# ----------------------------------------------------------------------------- real plans
+
+
+def _square(space_id: str, x0: float, y0: float, size: float, portal_at: tuple[float, float] | None) -> Space:
+    corners = [(x0, y0), (x0 + size, y0), (x0 + size, y0 + size), (x0, y0 + size)]
+    segments = [
+        LineSegment(f"{space_id}-w{i}", Point(*corners[i]), Point(*corners[(i + 1) % 4]), "WALL", "EXPLICIT")
+        for i in range(4)
+    ]
+    if portal_at is not None:
+        segments.append(LineSegment(f"{space_id}-p", Point(*portal_at), Point(*portal_at), "PORTAL", "EXPLICIT"))
+    return Space(
+        id=space_id,
+        rtype="R",
+        label="ROOM",
+        centroid=Point(x0 + size / 2, y0 + size / 2),
+        bbox=BoundingBox(x0, y0, x0 + size, y0 + size),
+        polygon=tuple(Point(*c) for c in corners),
+        segments=tuple(segments),
+        portals=(),
+    )
+
+
+def _two_squares(with_portal: bool) -> Building:
+    # two 3 m squares sharing the wall x = 300 (file units: 1 unit = 1 cm), a point door
+    # at (300, 150) in both spaces, as the real plans write doors
+    door = (300.0, 150.0) if with_portal else None
+    return Building("two", 90.0, 0.9, (_square("A", 0, 0, 300, door), _square("B", 300, 0, 300, door)))
+
+
+def _connected(grid: OccupancyGrid, p: tuple[float, float], q: tuple[float, float]) -> bool:
+    from collections import deque
+
+    free = ~grid.occupied
+    start, goal = grid.world_to_cell(*p), grid.world_to_cell(*q)
+    seen = {start}
+    queue = deque([start])
+    while queue:
+        cell = queue.popleft()
+        if cell == goal:
+            return True
+        r, c = cell
+        for nxt in ((r + 1, c), (r - 1, c), (r, c + 1), (r, c - 1)):
+            if grid.contains(*nxt) and free[nxt] and nxt not in seen:
+                seen.add(nxt)
+                queue.append(nxt)
+    return False
+
+
+def test_a_real_plan_point_portal_opens_a_door_of_the_scale_length() -> None:
+    grid = rasterize_building(_two_squares(with_portal=True))
+    centre_a, centre_b = (1.5, -1.5), (4.5, -1.5)  # frame: x = x_file·s, y = −y_file·s
+    assert grid.is_free(*centre_a) and grid.is_free(*centre_b)
+    assert _connected(grid, centre_a, centre_b)
+    opening = sum(grid.is_free(3.0, -y) for y in np.arange(0.0, 3.0, grid.resolution)) * grid.resolution
+    assert opening == pytest.approx(0.9, abs=2 * grid.resolution)
+
+
+def test_a_real_plan_without_portal_keeps_rooms_apart_and_is_framed() -> None:
+    grid = rasterize_building(_two_squares(with_portal=False))
+    assert not _connected(grid, (1.5, -1.5), (4.5, -1.5))
+    occ = grid.occupied
+    assert occ[0, :].all() and occ[-1, :].all() and occ[:, 0].all() and occ[:, -1].all()
+    assert not grid.is_free(-0.5, -1.5)  # outside every space
+
+
+def test_real_plan_grid_covers_the_plan_in_metres() -> None:
+    grid = rasterize_building(_two_squares(with_portal=True), resolution=0.1)
+    assert grid.origin[0] <= 0.0 and grid.origin[0] + grid.width_m >= 6.0
+    assert grid.origin[1] <= -3.0 and grid.origin[1] + grid.height_m >= 0.0
+    assert math.isclose(grid.resolution, 0.1)
