@@ -93,6 +93,7 @@ def _print_diagnostics(diagnostics: list[Diagnostic], sources: dict[str, Source]
 
 def run(args: argparse.Namespace) -> int:
     """Import one plan; 0 on success (warnings allowed), 1 on errors, 2 on usage/I/O errors."""
+    from layoutdsl.api import lint_source
     from layoutdsl.atomic import write_text_atomic
     from layoutdsl.format import format_spec
 
@@ -137,6 +138,13 @@ def run(args: argparse.Namespace) -> int:
 
     spec = replace(spec, path=f"{name}.lay" if to_stdout else args.output)
     output = format_spec(spec)
+    # The importer promises specs that lint clean; check before writing, so a bug shows up
+    # as diagnostics here rather than as a broken file for the next command.
+    lint_errors = [d for d in lint_source(Source(spec.path, output))[1] if d.is_error]
+    if lint_errors:
+        _print_diagnostics(lint_errors, {spec.path: Source(spec.path, output)}, args.format)
+        print("layoutdsl import: error: the imported spec does not lint clean (an importer bug); nothing written", file=sys.stderr)
+        return exitcodes.SPEC_ERRORS
     if to_stdout:
         sys.stdout.write(output)
         sys.stdout.flush()
