@@ -205,7 +205,7 @@ class LineBuilder(Transformer):
                 continue
             if key in seen:
                 self._error(E_BAD_WEIGHT, f"room weight `{key}` given twice", weight.span,
-                            label="second value", help="keep one `{key}=` token")  # fmt: skip
+                            label="second value", help=f"keep one `{key}=` token")  # fmt: skip
                 continue
             seen.add(key)
             value = _parse_float(text)

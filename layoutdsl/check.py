@@ -558,7 +558,7 @@ def check_doors(spec: Spec) -> Iterator[Diagnostic]:
                             f"door between `{adjacency.a}` and `{adjacency.b}` needs {need}, longer than "
                             f"any side of `{room_id}` (at most {_n(longest)} m)",
                             _span(adjacency, "door"), "too wide for `" + room_id + "`",
-                            f"use a door of at most {_n(longest * utilization)} m or let `{room_id}` grow")  # fmt: skip
+                            f"use a door of at most {_n(round(longest * utilization, 3))} m or let `{room_id}` grow")  # fmt: skip
                 break
 
 
@@ -673,16 +673,18 @@ def check_components(spec: Spec) -> Iterator[Diagnostic]:
     rooms = _rooms_by_id(spec)
     order = {room_id: index for index, room_id in enumerate(rooms)}
     components.sort(key=lambda c: min(order[r] for r in c))
-    main = components[0]
-    for component in components[1:]:
+
+    def shown(component) -> str:
         members = sorted(component, key=order.__getitem__)
-        first = rooms[members[0]]
-        shown = ", ".join(f"`{m}`" for m in members[:6]) + (", ..." if len(members) > 6 else "")
-        yield _diag(spec, W_COMPONENTS,
-                    f"room{'s' if len(members) > 1 else ''} {shown} cannot be reached from `{next(iter(sorted(main, key=order.__getitem__)))}`",
-                    _span(first, "id"), "not connected to the rest",
-                    "add an adjacency joining this group to the others",
-                    (f"the room graph has {len(components)} separate parts",), warning=True)  # fmt: skip
+        return ", ".join(f"`{m}`" for m in members[:8]) + (", ..." if len(members) > 8 else "")
+
+    first_cut_off = rooms[min(components[1], key=order.__getitem__)]
+    notes = tuple(f"part {i}: {shown(c)}" for i, c in enumerate(components, start=1))
+    yield _diag(spec, W_COMPONENTS,
+                f"the rooms form {len(components)} separate parts with no adjacency between them",
+                _span(first_cut_off, "id"), "first room not connected to the first part",
+                "add adjacencies joining the parts, so every room can be reached", notes,
+                warning=True)  # fmt: skip
 
 
 CHECKS = (
