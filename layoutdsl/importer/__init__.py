@@ -48,7 +48,8 @@ def import_building(
     spec, converted = convert(building, options, name=name, filename=filename)
     source_text = text if text is not None else _read_text(Path(filename))
     converted = [_point_at_tag(d, source_text) for d in converted]
-    return spec, sorted(diagnostics + converted, key=Diagnostic.sort_key)
+    diagnostics = sorted(diagnostics + converted, key=Diagnostic.sort_key)
+    return (None if has_errors(diagnostics) else spec), diagnostics
 
 
 def _read_text(path: Path) -> str:

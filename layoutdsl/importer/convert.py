@@ -162,6 +162,10 @@ def convert(
 ) -> tuple[Spec, list[Diagnostic]]:
     """Turn a Building into a Spec per seed §5.3; warnings say where the plan was adjusted."""
     diagnostics: list[Diagnostic] = []
+    if not building.spaces:
+        # read_building never returns such a Building (E410); one built in code might.
+        empty = Diagnostic(codes.NO_SPACES, "the plan has no spaces", filename, Span.point(1, 1))
+        return Spec(name=name or spec_name(building), rooms=(), boundary=None), [empty]
     settings = Settings()
     mpu = building.metres_per_unit
     door = _round(building.real_distance_m)

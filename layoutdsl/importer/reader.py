@@ -34,6 +34,9 @@ PORTAL_TYPES = ("EXPLICIT", "IMPLICIT")
 # Door sizes (metres) a real building can have; outside this the unit is almost surely wrong.
 PLAUSIBLE_DOOR_M = (0.4, 3.0)
 
+# Plans are drawn in pixels; a larger coordinate is a corrupted number, not a building.
+MAX_COORDINATE = 1e9
+
 _UNIT_TO_M = {"mm": 0.001, "cm": 0.01, "dm": 0.1, "m": 1.0}
 
 
@@ -160,6 +163,15 @@ class _Reader:
                 f"{where} `{raw.strip()}` is not a number",
                 self.span(element, attribute),
                 label="expected a finite number",
+            )
+            return None
+        if abs(value) > MAX_COORDINATE:
+            # Areas are squares of coordinates; keep them far from float overflow.
+            self.report(
+                codes.INVALID_NUMBER,
+                f"{where} `{raw.strip()}` is out of range",
+                self.span(element, attribute),
+                label=f"at most {MAX_COORDINATE:g} in absolute value",
             )
             return None
         return value
@@ -570,6 +582,8 @@ def read_building(
                     Span.point(1, 1),
                 )
             ]
+    if isinstance(data, str) and data.startswith("\ufeff"):
+        data = data[1:]  # a byte-order mark in decoded text would shift every column by one
     root, positions, diagnostics = _parse(filename, data)
     if root is None:
         return None, diagnostics

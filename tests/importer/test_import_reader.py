@@ -6,8 +6,11 @@ from pathlib import Path
 
 import pytest
 from _import_plans import PlanSpace, plan_xml, rect
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from layoutdsl.building import Point
+from layoutdsl.diagnostics import CODES
 from layoutdsl.importer import import_building, read_building
 
 FIXTURES = Path(__file__).parents[1] / "fixtures" / "floorplans"
@@ -216,3 +219,33 @@ def test_reader_never_raises_on_mangled_real_plans():
         assert building is not None or diagnostics
         spec, diagnostics = import_building("cut.xml", text=text[:cut])
         assert spec is not None or any(d.is_error for d in diagnostics)
+
+
+_SMALL_PLAN = _two_rooms()
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(
+    edits=st.lists(
+        st.tuples(
+            st.integers(0, len(_SMALL_PLAN)),
+            st.integers(0, 40),
+            st.sampled_from(["", "<", ">", "&", '"', "x", "-1", "1e999", "nan", "</space>", "<point/>", "\x00", "é", "\n"]),
+        ),
+        min_size=1,
+        max_size=4,
+    )
+)
+def test_mutated_plans_give_diagnostics_or_a_spec_never_an_exception(edits):
+    text = _SMALL_PLAN
+    for start, length, replacement in edits:
+        text = text[:start] + replacement + text[start + length :]
+    spec, diagnostics = import_building("fuzz.xml", text=text)
+    assert spec is not None or any(d.is_error for d in diagnostics)
+    for diagnostic in diagnostics:
+        assert diagnostic.span.line >= 1 and diagnostic.span.col >= 1
+        assert diagnostic.code in CODES
+    if spec is not None:
+        for room in spec.rooms:
+            assert room.min_w <= room.target_w <= room.max_w
+            assert room.min_h <= room.target_h <= room.max_h
