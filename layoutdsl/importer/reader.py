@@ -100,9 +100,15 @@ class _Reader:
 
     # ----- locations and reporting -----
 
-    def span(self, element: Element, attribute: str | None = None) -> Span:
-        """The span of an element's start tag name, or of one of its attributes."""
+    def span(self, element: Element, attribute: str | None = None, *, whole: bool = False) -> Span:
+        """The span of an element's start tag name, of one of its attributes, or (`whole`)
+        of the element up to its end tag when that is on the same line (`<id>x</id>`)."""
         line, col = self.positions.get(id(element), (1, 1))
+        if whole:
+            line_text = _line_of(self.text, line)
+            end = line_text.find(f"</{element.tag}>", col - 1)
+            if end >= 0:
+                return Span(line, col, line, end + len(element.tag) + 4)
         if attribute is not None:
             line_text = _line_of(self.text, line)
             match = re.compile(rf"\b{re.escape(attribute)}\s*=\s*(\"[^\"]*\"|'[^']*')").search(
@@ -161,7 +167,7 @@ class _Reader:
             self.report(
                 codes.INVALID_NUMBER,
                 f"{where} `{raw.strip()}` is not a number",
-                self.span(element, attribute),
+                self.span(element, attribute, whole=attribute is None),
                 label="expected a finite number",
             )
             return None
@@ -170,7 +176,7 @@ class _Reader:
             self.report(
                 codes.INVALID_NUMBER,
                 f"{where} `{raw.strip()}` is out of range",
-                self.span(element, attribute),
+                self.span(element, attribute, whole=attribute is None),
                 label=f"at most {MAX_COORDINATE:g} in absolute value",
             )
             return None
@@ -232,7 +238,7 @@ class _Reader:
             self.report(
                 codes.INVALID_SCALE,
                 f"unknown unit `{unit}` for the real distance",
-                self.span(unit_el if unit_el is not None else real_el),
+                self.span(unit_el if unit_el is not None else real_el, whole=True),
                 label="expected mm, cm, dm or m",
             )
             return None
@@ -247,7 +253,7 @@ class _Reader:
             self.report(
                 codes.INVALID_SCALE,
                 f"implausible door size {real:g} {unit}" + ("" if unit == "m" else f" ({real_m:g} m)"),
-                self.span(unit_el if unit_el is not None else real_el),
+                self.span(unit_el if unit_el is not None else real_el, whole=True),
                 label=f"a door is {low:g}-{high:g} m wide",
                 help=help_text,
             )
@@ -325,7 +331,7 @@ class _Reader:
             self.warn(
                 codes.UNKNOWN_ROOM_TYPE,
                 f"space `{space_id}` has {shown}; imported as a generic room",
-                self.span(type_el if type_el is not None else element),
+                self.span(type_el if type_el is not None else element, whole=True),
                 label="expected R, C or E",
             )
             rtype = "R"
@@ -415,7 +421,7 @@ class _Reader:
                 self.report(
                     codes.BAD_PORTAL_TARGETS,
                     f"portal of space `{space_id}` lists {len(targets)} target(s), not 2",
-                    self.span(target_el if target_el is not None else portal_el),
+                    self.span(target_el if target_el is not None else portal_el, whole=True),
                     label="expected two `<id>` elements",
                 )
                 ok = False
@@ -435,7 +441,7 @@ class _Reader:
                 self.warn(
                     codes.PORTAL_SEGMENT_MISSING,
                     f"portal's line segment `{segment_id}` is not a segment of space `{space_id}`",
-                    self.span(segment_el if segment_el is not None else portal_el),
+                    self.span(segment_el if segment_el is not None else portal_el, whole=True),
                     label="the door's position is unknown",
                 )
             kind = (portal_el.findtext("type") or "").strip().upper()
@@ -456,7 +462,7 @@ class _Reader:
                         self.report(
                             codes.UNKNOWN_SPACE,
                             f"portal of space `{space.id}` names unknown space `{target}`",
-                            self.span(id_el),
+                            self.span(id_el, whole=True),
                             label="no `<space>` has this id",
                             help=f"did you mean `{suggestion}`?" if suggestion else None,
                         )
