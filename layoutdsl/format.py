@@ -14,6 +14,7 @@ integers without `.0`), so `parse(format_spec(spec)) == spec` holds exactly.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import fields
 
@@ -35,6 +36,29 @@ def format_number(value: float) -> str:
     if float(value).is_integer() and abs(value) < 1e16:
         return str(int(value))
     return repr(float(value))
+
+
+_WEIGHT_LIKE = re.compile(r"[A-Za-z_][A-Za-z0-9_]*=")
+
+
+def safe_label(label: str) -> str:
+    """The label as words that read back as a label (labels from imported plans can be odd).
+
+    A word starting with `#` would start a comment and a `key=value` word would read as a
+    room weight, so `#` becomes `No.` and `=` becomes `-`; a last word `onB` would read as
+    the on-boundary flag, so it is written `onb`; an empty label becomes `ROOM`.
+    """
+    words = label.split()
+    out = []
+    for word in words:
+        if word.startswith("#"):
+            word = "No." + word[1:]
+        if _WEIGHT_LIKE.match(word):
+            word = word.replace("=", "-")
+        out.append(word)
+    if len(out) > 1 and out[-1] == "onB":
+        out[-1] = "onb"
+    return " ".join(out) or "ROOM"
 
 
 def _setting_text(value) -> str:
@@ -87,7 +111,7 @@ def format_lines(spec: Spec, header_lines: Mapping[str, int] | None = None) -> l
     for room in spec.rooms:
         values = (room.min_w, room.max_w, room.target_w, room.min_h, room.max_h, room.target_h,
                   room.min_ar, room.max_ar)  # fmt: skip
-        parts = [room.id, *(n(v) for v in values), room.rtype, room.label]
+        parts = [room.id, *(n(v) for v in values), room.rtype, safe_label(room.label)]
         if room.on_boundary:
             parts.append("onB")
         if room.rho_cover != 1.0:
