@@ -34,6 +34,8 @@ def test_writes_a_spec_that_lints_clean_and_reports_on_stderr(tmp_path, capsys):
     assert text.startswith("rooms\nR0 ") and "\nboundary\n" in text and "\nadjacencies\nR0 C0 0.9 e\n" in text
     assert "settings" not in text  # a plain thesis file plus hints
     assert list(tmp_path.iterdir()) == [out]  # no temporary file left behind
+    capsys.readouterr()
+    assert main(["fmt", "--check", str(out)]) == exitcodes.OK  # already in canonical form
 
 
 def test_stdout_output_and_options(capsys):
