@@ -13,7 +13,7 @@ from pathlib import Path
 from layoutdsl.ast import Spec
 from layoutdsl.diagnostics import Diagnostic, has_errors
 from layoutdsl.importer.convert import ImportOptions, convert, original_room_area, room_ids, spec_name
-from layoutdsl.importer.reader import polygon_area, read_building
+from layoutdsl.importer.reader import polygon_area, read_building, source_lines
 from layoutdsl.source import Span
 
 __all__ = [
@@ -62,7 +62,7 @@ def _read_text(path: Path) -> str:
 def _point_at_tag(diagnostic: Diagnostic, text: str) -> Diagnostic:
     """Give a line-only diagnostic from `convert` the column of the element on that line."""
     span = diagnostic.span
-    lines = text.splitlines()
+    lines = source_lines(text)
     if not (1 <= span.line <= len(lines)) or span.end_col != span.col:
         return diagnostic
     line_text = lines[span.line - 1]

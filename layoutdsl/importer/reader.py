@@ -38,6 +38,12 @@ PLAUSIBLE_DOOR_M = (0.4, 3.0)
 MAX_COORDINATE = 1e9
 
 _UNIT_TO_M = {"mm": 0.001, "cm": 0.01, "dm": 0.1, "m": 1.0}
+_UNIT_ALIASES = {
+    "": "cm",  # the thesis' default door is given in centimetres (seed §5.2)
+    **{f"{prefix}{word}{plural}": unit
+       for prefix, unit in (("milli", "mm"), ("centi", "cm"), ("deci", "dm"), ("", "m"))
+       for word in ("metre", "meter") for plural in ("", "s")},
+}  # fmt: skip
 
 
 class _PositionedBuilder:
@@ -97,20 +103,27 @@ class _Reader:
     positions: dict[int, tuple[int, int]]
     diagnostics: list[Diagnostic] = field(default_factory=list)
     space_ids: dict[str, Element] = field(default_factory=dict)
+    lines: list[str] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        self.lines = source_lines(self.text)
 
     # ----- locations and reporting -----
+
+    def line_text(self, line: int) -> str:
+        return self.lines[line - 1] if 1 <= line <= len(self.lines) else ""
 
     def span(self, element: Element, attribute: str | None = None, *, whole: bool = False) -> Span:
         """The span of an element's start tag name, of one of its attributes, or (`whole`)
         of the element up to its end tag when that is on the same line (`<id>x</id>`)."""
         line, col = self.positions.get(id(element), (1, 1))
         if whole:
-            line_text = _line_of(self.text, line)
+            line_text = self.line_text(line)
             end = line_text.find(f"</{element.tag}>", col - 1)
             if end >= 0:
                 return Span(line, col, line, end + len(element.tag) + 4)
         if attribute is not None:
-            line_text = _line_of(self.text, line)
+            line_text = self.line_text(line)
             match = re.compile(rf"\b{re.escape(attribute)}\s*=\s*(\"[^\"]*\"|'[^']*')").search(
                 line_text, col - 1
             )
@@ -233,7 +246,8 @@ class _Reader:
             )
             ok = False
         unit_el = real_el.find("um")
-        unit = (unit_el.text or "").strip().lower() if unit_el is not None else "cm"
+        unit = (unit_el.text or "").strip().lower() if unit_el is not None else ""
+        unit = _UNIT_ALIASES.get(unit, unit)
         if unit not in _UNIT_TO_M:
             self.report(
                 codes.INVALID_SCALE,
@@ -479,9 +493,9 @@ def polygon_area(points) -> float:
     return abs(total) / 2.0
 
 
-def _line_of(text: str, line: int) -> str:
-    lines = text.splitlines()
-    return lines[line - 1] if 1 <= line <= len(lines) else ""
+def source_lines(text: str) -> list[str]:
+    """The text's lines as expat numbers them (only a newline ends a line; CR dropped)."""
+    return [line[:-1] if line.endswith("\r") else line for line in text.split("\n")]
 
 
 def _closest(name: str, candidates) -> str | None:

@@ -249,3 +249,19 @@ def test_mutated_plans_give_diagnostics_or_a_spec_never_an_exception(edits):
         for room in spec.rooms:
             assert room.min_w <= room.target_w <= room.max_w
             assert room.min_h <= room.target_h <= room.max_h
+
+
+@pytest.mark.parametrize(
+    "real, unit, door",
+    [("90", "cm", 0.9), ("90", "centimeters", 0.9), ("90", "", 0.9), ("1.2", "m", 1.2), ("800", "mm", 0.8)],
+)
+def test_door_size_units(real, unit, door):
+    building, diagnostics = read_building("plan.xml", text=_two_rooms(real=real, unit=unit))
+    assert diagnostics == []
+    assert building.real_distance_m == pytest.approx(door)
+    assert building.metres_per_unit == pytest.approx(door / 90)
+
+
+def test_unknown_unit_is_an_error():
+    _, diagnostics = read_building("plan.xml", text=_two_rooms(unit="inch"))
+    assert [(d.code, d.message) for d in diagnostics] == [("E406", "unknown unit `inch` for the real distance")]
