@@ -30,8 +30,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from layoutdsl.evaluate.grid import dilate, disc_offsets
-from layoutdsl.evaluate.paths import DistanceGrid, backtrack, polyline_length, string_pull
+from layoutdsl.evaluate.grid import dilate, disc_offsets, inflate
+from layoutdsl.evaluate.paths import DistanceGrid, backtrack, string_pull
 
 UNKNOWN, FREE, OCCUPIED = -1, 0, 1
 
@@ -236,8 +236,6 @@ def explore(
     centre may occupy (the walls inflated by its radius), computed here when omitted. The
     seed picks the initial heading; everything else is deterministic.
     """
-    from layoutdsl.evaluate.grid import inflate
-
     if traversable is None:
         traversable = ~inflate(occupied, robot_radius_m, resolution)
     if not traversable[start]:
@@ -350,4 +348,4 @@ def _towards_unknown(known: np.ndarray, cell: tuple[int, int], radius: float) ->
     return math.atan2(-d_row, d_col)
 
 
-__all__ = ["ExploreSettings", "ExplorationResult", "explore", "reachable_free", "polyline_length"]
+__all__ = ["ExploreSettings", "ExplorationResult", "explore", "reachable_free"]
