@@ -166,6 +166,18 @@ def convert(
         # read_building never returns such a Building (E410); one built in code might.
         empty = Diagnostic(codes.NO_SPACES, "the plan has no spaces", filename, Span.point(1, 1))
         return Spec(name=name or spec_name(building), rooms=(), boundary=None), [empty]
+    degenerate = [space for space in building.spaces if polygon_area(space.polygon) <= 0]
+    if degenerate:
+        # read_building refuses these (E405); a Building built in code might hold one.
+        return Spec(name=name or spec_name(building), rooms=(), boundary=None), [
+            Diagnostic(
+                codes.DEGENERATE_POLYGON,
+                f"the polygon of space `{space.id}` encloses no area",
+                filename,
+                _space_span(space),
+            )
+            for space in degenerate
+        ]
     settings = Settings()
     mpu = building.metres_per_unit
     door = _round(building.real_distance_m)
@@ -190,9 +202,9 @@ def convert(
         area = polygon_area(space.polygon) * mpu * mpu
         # A self-intersecting polygon can claim more than its box; a room never fills more.
         ratio = min(1.0, math.sqrt(area / (bbox_w * bbox_h)))
-        corridor = space.rtype == "C"
-        var_plus = options.var_corridor if corridor else options.var_plus
-        var_minus = options.var_corridor if corridor else options.var_minus
+        rtype = space.rtype if space.rtype in _DEFAULT_LABELS else "R"
+        var_plus = options.var_corridor if rtype == "C" else options.var_plus
+        var_minus = options.var_corridor if rtype == "C" else options.var_minus
 
         sides = _Sides(
             min_w=max(options.mindim, bbox_w * (ratio - var_minus)),
@@ -202,7 +214,7 @@ def convert(
             max_h=bbox_h * (ratio + var_plus),
             target_h=bbox_h * ratio,
         )
-        label = spec_label(space.label) or _DEFAULT_LABELS[space.rtype if space.rtype in _DEFAULT_LABELS else "R"]
+        label = spec_label(space.label) or _DEFAULT_LABELS[rtype]
         _lift_to_mindim(sides, ratio, var_plus, options, room_id, label, space, filename, diagnostics)
         widened = False
         if room_id in door_rooms and max(sides.max_w, sides.max_h) < door_side:
@@ -238,7 +250,7 @@ def convert(
                 target_h=target_h,
                 min_ar=min_ar,
                 max_ar=max_ar,
-                rtype=space.rtype if space.rtype in _DEFAULT_LABELS else "R",
+                rtype=rtype,
                 label=label,
             )
         )

@@ -9,7 +9,7 @@ from _import_plans import PlanSpace, plan_xml, rect
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from layoutdsl.importer import ImportOptions, import_building, original_room_area, read_building
+from layoutdsl.importer import ImportOptions, convert, import_building, original_room_area, read_building
 
 
 def _import(xml: str, options: ImportOptions = ImportOptions()):
@@ -193,3 +193,13 @@ def test_every_imported_room_has_consistent_feasible_bounds(w, h, cut, rtype, va
     assert 1 <= room.min_ar <= ar + 1e-9 and ar <= room.max_ar + 1e-9
     if with_door:
         assert max(room.max_w, room.max_h) >= 0.9 + 2 * 0.2 - 1e-9
+
+
+def test_convert_reports_buildings_built_in_code_that_the_reader_would_refuse():
+    from layoutdsl.building import BoundingBox, Building, Point, Space
+
+    flat = Space("s", "R", "ROOM", None, BoundingBox(0, 0, 10, 0), (Point(0, 0), Point(10, 0), Point(5, 0)), (), ())
+    spec, diagnostics = convert(Building("b", 90, 0.9, (flat,)), ImportOptions())
+    assert [d.code for d in diagnostics] == ["E405"] and spec.rooms == ()
+    spec, diagnostics = convert(Building("b", 90, 0.9, ()), ImportOptions())
+    assert [d.code for d in diagnostics] == ["E410"] and spec.rooms == ()
