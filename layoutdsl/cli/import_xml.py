@@ -27,9 +27,10 @@ def add_parser(subparsers) -> None:
         "import",
         help="convert a building XML floor plan into a spec (seed §5.3)",
         description=(
-            "Convert a real floor plan in the building XML format into a layout spec: one "
-            "rectangular room per space (sizes from its polygon, seed §5.3), one adjacency "
-            "per pair of spaces joined by a portal, the plan's bounding box as boundary."
+            "Convert a real floor plan in the building XML format into a layout spec:\n"
+            "one rectangular room per space (sizes from its polygon, seed §5.3), one\n"
+            "adjacency per pair of spaces joined by a portal, the plan's bounding box as\n"
+            "boundary, and each room's original place as a hint for the first layout."
         ),
         epilog=exitcodes.EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
