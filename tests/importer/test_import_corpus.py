@@ -14,6 +14,7 @@ import xml.etree.ElementTree as ElementTree
 from dataclasses import replace
 from pathlib import Path
 
+import networkx as nx
 import pytest
 
 from layoutdsl.api import lint_source
@@ -26,13 +27,13 @@ CORPUS = Path(__file__).parents[2] / ".." / "shared" / "floorplans"
 PLANS = sorted(CORPUS.glob("*.xml"))
 
 
-def _index_counts() -> dict[str, tuple[int, int]]:
-    """file name -> (spaces, edges) from the corpus' INDEX.md table."""
+def _index_counts() -> dict[str, tuple[int, int, int]]:
+    """file name -> (spaces, edges, components) from the corpus' INDEX.md table."""
     counts = {}
     for line in (CORPUS / "INDEX.md").read_text().splitlines():
-        match = re.match(r"\|\s*(\S+\.xml)\s*\|\s*(\d+)\s*\|\s*(\d+)\s*\|", line)
+        match = re.match(r"\|\s*(\S+\.xml)\s*\|\s*(\d+)\s*\|\s*(\d+)\s*\|\s*\d+\s*\|\s*(\d+)\s*\|", line)
         if match:
-            counts[match.group(1)] = (int(match.group(2)), int(match.group(3)))
+            counts[match.group(1)] = (int(match.group(2)), int(match.group(3)), int(match.group(4)))
     return counts
 
 
@@ -82,5 +83,9 @@ def test_real_plan_imports_lints_clean_and_keeps_its_portal_graph(plan: Path):
     assert {frozenset((a.a, a.b)): a.kind for a in spec.adjacencies} == edges
     assert len(spec.adjacencies) == len(edges)  # one adjacency per pair, however many doors
     assert {a.door for a in spec.adjacencies} == {0.9}
-    assert (len(spec.rooms), len(spec.adjacencies)) == _index_counts()[plan.name]
+    graph = nx.Graph()
+    graph.add_nodes_from(spec.room_ids)
+    graph.add_edges_from((a.a, a.b) for a in spec.adjacencies)
+    components = nx.number_connected_components(graph)
+    assert (len(spec.rooms), len(spec.adjacencies), components) == _index_counts()[plan.name]
     assert [h.room for h in spec.hints] == [r.id for r in spec.rooms]
