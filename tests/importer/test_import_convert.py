@@ -34,6 +34,16 @@ def test_figure_4_2_row_of_a_rectangular_classroom():
     assert _row(room) == pytest.approx(expected, abs=0.01)
 
 
+def test_figure_4_2_corridor_row_comes_out_with_the_default_corridor_variance():
+    # C3 of Figure 4.2 (3.21 7.84 5.53 15.99 39.03 27.51 3.11 6.84) is a corridor whose
+    # polygon fills about 91 % of its box: a 5.79 m x 28.81 m box minus a 0.58 m x 25.38 m strip.
+    corridor = [(0, 0), (579, 0), (579, 2881), (58, 2881), (58, 343), (0, 343), (0, 0)]
+    spec, diagnostics = _import(plan_xml([PlanSpace("c", "C", "CORRIDOR", corridor)]))
+    assert diagnostics == []
+    expected = [3.21, 7.84, 5.53, 15.99, 39.03, 27.51, 3.11, 6.84]
+    assert _row(spec.rooms[0]) == pytest.approx(expected, abs=0.01)
+
+
 def test_non_rectangular_room_keeps_its_area_and_bbox_proportions():
     # An L: a 10 m x 10 m box missing a 5 m x 5 m corner; area 75 m², ratio sqrt(0.75).
     l_shape = [(0, 0), (1000, 0), (1000, 500), (500, 500), (500, 1000), (0, 1000), (0, 0)]
