@@ -126,10 +126,16 @@ def _finite_float(text: str) -> float:
 
 
 class LineBuilder(Transformer):
-    """Lark Transformer from one entry line's tree to its AST node (or marker tuple)."""
+    """Lark Transformer from one entry line to its AST node (or a marker tuple).
 
-    def __init__(self, filename: str) -> None:
-        super().__init__()
+    Lark runs it inline while parsing (see parser.get_parser), so it cannot take the line
+    number from the tree: the parser sets `line` and `filename` before each line, and
+    value errors are appended to `diagnostics`. One instance serves the process
+    (LINE_BUILDER); parsing is therefore not thread-safe.
+    """
+
+    def __init__(self, filename: str = "<spec>") -> None:
+        super().__init__(visit_tokens=False)
         self.filename = filename
         self.line = 1
         self.diagnostics: list[Diagnostic] = []
@@ -289,6 +295,10 @@ class LineBuilder(Transformer):
         return ("setting", self._word(children[0]), [self._word(t) for t in children[1:]])
 
 
+LINE_BUILDER = LineBuilder()
+"""The builder Lark calls while parsing a line (parser.get_parser)."""
+
+
 def _parse_float(text: str) -> float | None:
     if not re.fullmatch(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?", text):
         return None
@@ -394,8 +404,7 @@ def build_spec(
     had_syntax_errors: bool = False,
 ) -> tuple[Spec, list[Diagnostic]]:
     """Assemble the parsed entry lines into a Spec, reporting value errors."""
-    builder = LineBuilder(path)
-    diagnostics = builder.diagnostics
+    diagnostics: list[Diagnostic] = []
     rooms: list[Room] = []
     obstacles: list[Obstacle] = []
     size: tuple[_Num, _Num] | None = None
@@ -407,8 +416,7 @@ def build_spec(
     hints: list[Hint] = []
     setting_lines: list[tuple[_Word, list[_Word], int]] = []
     for entry in entries:
-        builder.line = entry.line
-        node = builder.transform(entry.tree)
+        node = entry.node
         if isinstance(node, Room):
             rooms.append(node)
         elif isinstance(node, Obstacle):
