@@ -1,0 +1,50 @@
+"""The README documents the language truthfully: its example lints clean, its code table is current."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from layoutdsl.api import lint_source
+from layoutdsl.diagnostics import load_all_codes
+from layoutdsl.format import format_source
+from layoutdsl.source import Source
+
+README = Path(__file__).resolve().parents[2] / "README.md"
+START, END = "<!-- codes:start -->", "<!-- codes:end -->"
+
+
+def _cell(text: str) -> str:
+    return " ".join(text.split()).replace("|", "\\|")
+
+
+def codes_table() -> str:
+    """The README's table of every registered code, generated from CODES."""
+    rows = ["| code | severity | title | what it does | why is this bad? |", "|---|---|---|---|---|"]
+    for code, doc in sorted(load_all_codes().items()):
+        rows.append(f"| {code} | {doc.severity.value} | {_cell(doc.title)} | {_cell(doc.what_it_does)} | "
+                    f"{_cell(doc.why_bad)} |")  # fmt: skip
+    return "\n".join(rows)
+
+
+def test_code_table_is_current(request) -> None:
+    text = README.read_text(encoding="utf-8")
+    before, rest = text.split(START)
+    _, after = rest.split(END)
+    expected = f"{before}{START}\n{codes_table()}\n{END}{after}"
+    if request.config.getoption("--update-goldens"):
+        README.write_text(expected, encoding="utf-8")
+        return
+    assert text == expected, "README code table is stale: run pytest tests/frontend/test_readme.py --update-goldens"
+
+
+def test_complete_example_lints_clean_and_is_canonical() -> None:
+    text = README.read_text(encoding="utf-8")
+    section = text.split("### A complete example", 1)[1]
+    example = re.search(r"```\n(.*?)```", section, re.S).group(1)
+    source = Source("example.lay", example)
+    spec, diagnostics = lint_source(source)
+    assert diagnostics == []
+    assert spec.positions and spec.connections and spec.clusters and spec.hints and spec.boundary.obstacles
+    assert any(r.on_boundary for r in spec.rooms) and any(r.rho_cover != 1 for r in spec.rooms)
+    assert format_source(source) == example
