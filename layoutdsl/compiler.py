@@ -195,7 +195,7 @@ def compile_spec(
         timings["explain"] = time.monotonic() - t0
     else:
         status = "no_layout"
-        diagnostics = [explain.no_layout_in_time(spec, options)]
+        diagnostics = [explain.no_layout_in_time(spec, options, outcome.status)]
     timings["total"] = time.monotonic() - began
     return CompileResult(None, diagnostics, status, timings, outcome)
 

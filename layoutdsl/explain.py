@@ -38,7 +38,8 @@ E902 = register(
     "E902",
     Severity.ERROR,
     "no-layout-in-time",
-    "Reports that the time limit passed before the solver found any layout.",
+    "Reports that the solver stopped at its time limit (or node or solution limit) before "
+    "it found any layout.",
     "The spec may well be feasible, but no layout was found in time, so nothing was written. "
     "Larger specs, tight boundaries, narrow size ranges and cycles of adjacent rooms make the "
     "first layout hard to find.",
@@ -78,14 +79,20 @@ def _first_line_span(spec: Spec) -> Span:
     return _FALLBACK_SPAN
 
 
-def no_layout_in_time(spec: Spec, options) -> Diagnostic:
-    """E902: the time limit passed with no layout; says what to try."""
+def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagnostic:
+    """E902: the solver stopped (time, node or solution limit) with no layout; says what to try."""
+    if status == "node_limit" and options.node_limit is not None:
+        limit = f"the node limit of {options.node_limit}"
+    elif status == "solution_limit" and options.solution_limit is not None:
+        limit = f"the solution limit of {options.solution_limit}"
+    else:
+        limit = f"the time limit of {options.time_limit:g} s"
     return Diagnostic(
         code=E902,
-        message=f"no layout found within the time limit of {options.time_limit:g} s",
+        message=f"no layout found within {limit}",
         filename=spec.path,
         span=_first_line_span(spec),
-        label="no layout for this boundary in time",
+        label="no layout for this boundary found",
         help=(
             "try a longer limit (`--time-limit`), a larger boundary, wider size ranges "
             "(a larger variance when importing), `--emphasis feasibility`, or the cycle "
@@ -111,16 +118,19 @@ def verification_failed(spec: Spec, violations) -> Diagnostic:
     )
 
 
-def infeasible_without_explanation(spec: Spec) -> Diagnostic:
-    """E904: proven infeasible, but no small conflicting set was isolated."""
+def infeasible_without_explanation(spec: Spec, *, searched: bool = False) -> Diagnostic:
+    """E904: proven infeasible, but no small conflicting set was isolated (or none was sought)."""
+    if searched:
+        hint = "a longer `--time-limit` gives the compiler time to isolate the conflicting lines"
+    else:
+        hint = "run without `--no-explain` to find the conflicting lines"
     return Diagnostic(
         code=E904,
         message="no layout satisfies every hard constraint of this spec",
         filename=spec.path,
         span=_first_line_span(spec),
         label="the rooms do not fit this boundary with these constraints",
-        help="try a larger boundary or wider size ranges; a longer `--time-limit` lets the "
-        "compiler isolate the conflicting lines",
+        help=f"try a larger boundary or wider size ranges; {hint}",
     )
 
 
@@ -263,11 +273,16 @@ def explain_infeasibility(spec: Spec, options, *, test: FeasibilityTest | None =
     deadline = time.monotonic() + budget
     groups = conflicting_groups(spec, deadline=deadline, test=test)
     if not groups:
-        return [infeasible_without_explanation(spec)]
+        return [infeasible_without_explanation(spec, searched=True)]
+    assert spec.boundary is not None
+    setting = (f"inside the {spec.boundary.w:g} x {spec.boundary.h:g} m boundary, rooms "
+               f"{spec.settings.walldim:g} m (one wall) apart")
     others = {g: [o for o in groups if o is not g] for g in groups}
     diagnostics = []
     for group in groups:
-        partners = "; ".join(o.describe for o in others[group][:3])
+        partners = "; ".join(o.describe for o in others[group][:4])
+        if len(others[group]) > 4:
+            partners += f"; and {len(others[group]) - 4} more"
         diagnostics.append(Diagnostic(
             code=E901,
             message=f"{group.describe}, which conflicts with {len(others[group])} other line"
@@ -276,7 +291,7 @@ def explain_infeasibility(spec: Spec, options, *, test: FeasibilityTest | None =
             span=_span(group.span),
             label="part of a conflict",
             help=_help_for(group),
-            notes=(f"conflicts with: {partners}",) if partners else (),
+            notes=((f"conflicts with: {partners}",) if partners else ()) + (setting,),
         ))
     return diagnostics
 

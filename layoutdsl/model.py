@@ -60,10 +60,16 @@ class Formulation:
     """Order interchangeable rooms (identical lines and neighbourhoods) by x."""
     adjacency_links: bool = True
     """Tie each adjacency's side binary to the pair's non-overlap binaries (valid cuts)."""
+    long_short: bool = True
+    """Give each room long and short side variables (w and h swapped by o) and write the
+    size bounds, aspect ratio and objective on them: exact, and SCIP's relaxation of the
+    area a <= long*short is much tighter than of a <= w*h, whose bounds span both
+    orientations."""
 
 
 THESIS_AS_WRITTEN = Formulation(
-    tight_big_m=False, prune_pairs=False, symmetry_breaking=False, adjacency_links=False
+    tight_big_m=False, prune_pairs=False, symmetry_breaking=False, adjacency_links=False,
+    long_short=False,
 )
 """The formulation of §5.5.1 with only the corrections needed for correctness."""
 
@@ -237,20 +243,50 @@ def build_model(
     m.w = pyo.Var(m.rooms, bounds=lambda _, r: bounds[r].w, doc="width along x (m)")
     m.h = pyo.Var(m.rooms, bounds=lambda _, r: bounds[r].h, doc="height along y (m)")
     m.o = pyo.Var(m.rooms, domain=pyo.Binary, doc="orientation: 0 = w is the long side, 1 = h is")
+    lo = {r.id: (min(r.min_w, r.min_h), max(r.min_w, r.min_h)) for r in spec.rooms}
+    hi = {r.id: (min(r.max_w, r.max_h), max(r.max_w, r.max_h)) for r in spec.rooms}
+    long_short = formulation.long_short
+    if long_short:
+        side_bounds = {r: (min(bounds[r].w[0], bounds[r].h[0]), max(bounds[r].w[1], bounds[r].h[1])) for r in rooms}
+        m.long = pyo.Var(m.rooms, bounds=lambda _, r: side_bounds[r], doc="the long side: w when o = 0, h when o = 1")
+        m.short = pyo.Var(m.rooms, bounds=lambda _, r: side_bounds[r], doc="the short side: h when o = 0, w when o = 1")
+        m.orientation = pyo.Block(doc="o swaps which of w, h is the long side")
+        ob = m.orientation
+
+        def swap_rule(_, r, which):
+            spread = big_m(side_bounds[r][1] - side_bounds[r][0])
+            o = m.o[r]
+            return {
+                "long_w_lo": m.long[r] >= m.w[r] - spread * o,
+                "long_w_hi": m.long[r] <= m.w[r] + spread * o,
+                "short_h_lo": m.short[r] >= m.h[r] - spread * o,
+                "short_h_hi": m.short[r] <= m.h[r] + spread * o,
+                "long_h_lo": m.long[r] >= m.h[r] - spread * (1 - o),
+                "long_h_hi": m.long[r] <= m.h[r] + spread * (1 - o),
+                "short_w_lo": m.short[r] >= m.w[r] - spread * (1 - o),
+                "short_w_hi": m.short[r] <= m.w[r] + spread * (1 - o),
+            }[which]
+
+        ob.swap = pyo.Constraint(m.rooms, ["long_w_lo", "long_w_hi", "short_h_lo", "short_h_hi",
+                                           "long_h_lo", "long_h_hi", "short_w_lo", "short_w_hi"], rule=swap_rule)
 
     # ----- (5.4) minimum size: the long side gets the larger minimum -----
     m.eq5_4_min_size = pyo.Block(doc="(5.4) h >= minD + (maxD - minD)*o, w >= minD + (maxD - minD)*(1 - o)")
     b = m.eq5_4_min_size
-    lo = {r.id: (min(r.min_w, r.min_h), max(r.min_w, r.min_h)) for r in spec.rooms}
-    hi = {r.id: (min(r.max_w, r.max_h), max(r.max_w, r.max_h)) for r in spec.rooms}
     b.height = pyo.Constraint(m.rooms, rule=lambda _, r: m.h[r] >= lo[r][0] + (lo[r][1] - lo[r][0]) * m.o[r])
     b.width = pyo.Constraint(m.rooms, rule=lambda _, r: m.w[r] >= lo[r][0] + (lo[r][1] - lo[r][0]) * (1 - m.o[r]))
+    if long_short:  # the same minimums on the orientation-free sides
+        b.long = pyo.Constraint(m.rooms, rule=lambda _, r: m.long[r] >= lo[r][1])
+        b.short = pyo.Constraint(m.rooms, rule=lambda _, r: m.short[r] >= lo[r][0])
 
     # ----- (5.5) maximum size: the short side gets the smaller maximum -----
     m.eq5_5_max_size = pyo.Block(doc="(5.5) w <= maxD + (minD - maxD)*o, h <= maxD + (minD - maxD)*(1 - o)")
     b = m.eq5_5_max_size
     b.width = pyo.Constraint(m.rooms, rule=lambda _, r: m.w[r] <= hi[r][1] + (hi[r][0] - hi[r][1]) * m.o[r])
     b.height = pyo.Constraint(m.rooms, rule=lambda _, r: m.h[r] <= hi[r][1] + (hi[r][0] - hi[r][1]) * (1 - m.o[r]))
+    if long_short:
+        b.long = pyo.Constraint(m.rooms, rule=lambda _, r: m.long[r] <= hi[r][1])
+        b.short = pyo.Constraint(m.rooms, rule=lambda _, r: m.short[r] <= hi[r][0])
 
     # ----- (5.6) aspect ratio, not for corridors: o = 0 bounds w/h, o = 1 bounds h/w -----
     m.eq5_6_aspect_ratio = pyo.Block(doc="(5.6) long/short side ratio in [minar, maxar], rooms minus corridors")
@@ -274,6 +310,9 @@ def build_model(
 
     for kind in ("w_min", "w_max", "h_min", "h_max"):
         setattr(b, kind, pyo.Constraint(b.rooms, rule=_ar(kind)))
+    if long_short:  # the same ratio on the orientation-free sides: linear, no big-M
+        b.long_min = pyo.Constraint(b.rooms, rule=lambda _, r: rooms[r].min_ar * m.short[r] <= m.long[r])
+        b.long_max = pyo.Constraint(b.rooms, rule=lambda _, r: m.long[r] <= rooms[r].max_ar * m.short[r])
 
     # ----- (5.7) inside the boundary -----
     m.eq5_7_inside = pyo.Block(doc="(5.7) every room inside the boundary")
@@ -495,32 +534,37 @@ def build_model(
     # ----- objective (5.1)-(5.3), bounded-helper form -----
     m.eq5_2_cover = pyo.Block(doc="(5.2) covered area: a <= w*h, a bounded by the size bounds")
     b = m.eq5_2_cover
-    b.area = pyo.Var(m.rooms, bounds=lambda _, r: (bounds[r].w[0] * bounds[r].h[0], bounds[r].w[1] * bounds[r].h[1]),
+    b.area = pyo.Var(m.rooms, bounds=lambda _, r: (lo[r][0] * lo[r][1], min(hi[r][0] * hi[r][1], width * height)),
                      doc="a_i, at most the room's area w*h")
-    b.product = pyo.Constraint(m.rooms, rule=lambda _, r: b.area[r] <= m.w[r] * m.h[r])
+    if long_short:
+        b.product = pyo.Constraint(m.rooms, rule=lambda _, r: b.area[r] <= m.long[r] * m.short[r])
+    else:
+        b.product = pyo.Constraint(m.rooms, rule=lambda _, r: b.area[r] <= m.w[r] * m.h[r])
 
     m.eq5_3_error = pyo.Block(doc="(5.3) squared size error against the targets, by orientation")
     b = m.eq5_3_error
-
-    def err_bounds(which: str):
-        def rule(_, r):
-            room, bd = rooms[r], bounds[r]
-            lo, hi = bd.w if which == "w" else bd.h
-            t_lo, t_hi = min(room.target_w, room.target_h), max(room.target_w, room.target_h)
-            return (lo - t_hi, hi - t_lo)
-        return rule
-
     # targets as (long, short): o = 0 compares w with the long target (see module docstring)
     target = {r.id: (max(r.target_w, r.target_h), min(r.target_w, r.target_h)) for r in spec.rooms}
-    b.err_w = pyo.Var(m.rooms, bounds=err_bounds("w"), doc="e_w = w - (1-o)*w* - o*h*")
-    b.err_h = pyo.Var(m.rooms, bounds=err_bounds("h"), doc="e_h = h - o*w* - (1-o)*h*")
-    b.err_w_def = pyo.Constraint(m.rooms, rule=lambda _, r: b.err_w[r] == m.w[r] - (1 - m.o[r]) * target[r][0] - m.o[r] * target[r][1])
-    b.err_h_def = pyo.Constraint(m.rooms, rule=lambda _, r: b.err_h[r] == m.h[r] - m.o[r] * target[r][0] - (1 - m.o[r]) * target[r][1])
+
+    def err_bounds(_, r):
+        """A side lies in [0, largest side]; a target in [0, largest target]."""
+        return (-target[r][0], max(bounds[r].w[1], bounds[r].h[1]))
+
+    b.err_w = pyo.Var(m.rooms, bounds=err_bounds,
+                      doc="e_w = w - (1-o)*w* - o*h* (long side - long target with long_short)")
+    b.err_h = pyo.Var(m.rooms, bounds=err_bounds,
+                      doc="e_h = h - o*w* - (1-o)*h* (short side - short target with long_short)")
+    if long_short:
+        # (5.3) with o resolved: the long side is compared with the long target
+        b.err_w_def = pyo.Constraint(m.rooms, rule=lambda _, r: b.err_w[r] == m.long[r] - target[r][0])
+        b.err_h_def = pyo.Constraint(m.rooms, rule=lambda _, r: b.err_h[r] == m.short[r] - target[r][1])
+    else:
+        b.err_w_def = pyo.Constraint(m.rooms, rule=lambda _, r: b.err_w[r] == m.w[r] - (1 - m.o[r]) * target[r][0] - m.o[r] * target[r][1])
+        b.err_h_def = pyo.Constraint(m.rooms, rule=lambda _, r: b.err_h[r] == m.h[r] - m.o[r] * target[r][0] - (1 - m.o[r]) * target[r][1])
 
     def sq_bounds(_, r):
-        ew_lo, ew_hi = err_bounds("w")(None, r)
-        eh_lo, eh_hi = err_bounds("h")(None, r)
-        return (0.0, max(ew_lo**2, ew_hi**2) + max(eh_lo**2, eh_hi**2))
+        e_lo, e_hi = err_bounds(None, r)
+        return (0.0, 2 * max(e_lo**2, e_hi**2))
 
     b.sq = pyo.Var(m.rooms, bounds=sq_bounds, doc="q_i >= e_w^2 + e_h^2")
     b.sq_def = pyo.Constraint(m.rooms, rule=lambda _, r: b.sq[r] >= b.err_w[r] ** 2 + b.err_h[r] ** 2)
@@ -674,10 +718,16 @@ def warm_start_from_rects(model: pyo.ConcreteModel, spec: Spec, rects: Mapping[s
         put(model.o[r], o)
         area = model.eq5_2_cover.area[r]
         put(area, min(w * h, area.ub))
+        if hasattr(model, "long"):
+            put(model.long[r], w if o == 0 else h)
+            put(model.short[r], h if o == 0 else w)
         tw, th = orientation_targets(rooms[r], o)
-        put(model.eq5_3_error.err_w[r], w - tw)
-        put(model.eq5_3_error.err_h[r], h - th)
-        put(model.eq5_3_error.sq[r], (w - tw) ** 2 + (h - th) ** 2)
+        err_w, err_h = w - tw, h - th
+        if hasattr(model, "long") and o == 1:  # errors of (long, short) = (h, w)
+            err_w, err_h = err_h, err_w
+        put(model.eq5_3_error.err_w[r], err_w)
+        put(model.eq5_3_error.err_h[r], err_h)
+        put(model.eq5_3_error.sq[r], err_w**2 + err_h**2)
 
     shapes: dict[str, Rect] = dict(rects)
     for ob in spec.boundary.obstacles if spec.boundary else ():

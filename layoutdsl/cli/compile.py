@@ -82,6 +82,9 @@ def add_parser(subparsers) -> None:
     parser.add_argument("--strategy", choices=STRATEGIES, default="auto",
                         help="auto: construct a first layout, then SCIP; thesis: the thesis' "
                         "formulation solved by SCIP from scratch; cycles: cycle decomposition")
+    parser.add_argument("--no-explain", dest="explain", action="store_false",
+                        help="when the spec is infeasible, say so without searching for the "
+                        "conflicting lines (faster on large specs)")
     parser.add_argument("--stdin-filename", metavar="NAME", help="the name messages use for standard input")
     parser.add_argument("--format", choices=("full", "concise", "json"), default="full",
                         help="how diagnostics are printed (default full)")
@@ -160,7 +163,7 @@ def run(args: argparse.Namespace) -> int:
     if not args.quiet:
         print(f"compiling `{spec.name}`: {len(spec.rooms)} rooms, time limit {options.time_limit:g} s",
               file=sys.stderr, flush=True)
-    result = compile_spec(spec, options)
+    result = compile_spec(spec, options, explain_infeasible=args.explain)
     _print_diagnostics(result.diagnostics, sources, args.format)
     if result.layout is None:
         return exitcodes.NO_LAYOUT
