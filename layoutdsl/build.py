@@ -121,10 +121,6 @@ class _Word:
     span: Span
 
 
-def _finite_float(text: str) -> float:
-    return float(text)
-
-
 class LineBuilder(Transformer):
     """Lark Transformer from one entry line to its AST node (or a marker tuple).
 

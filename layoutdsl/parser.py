@@ -234,20 +234,16 @@ def parse_line(rule: str, text: str, line: int = 1, filename: str = "<line>") ->
 # ===== Named syntax errors =====
 
 
-def _wrong_token(kind: str) -> str:
-    return "x" if kind == "number" else "7"
+def _shape_examples(shape: tuple[tuple[str, str], ...]) -> tuple[list[str], list[str], list[str]]:
+    """Examples for a line shape: cut short after each value, and a wrong type at each value.
 
-
-def _shape_examples(shape: tuple[tuple[str, str], ...], prefix: tuple[str, ...] = ()):
-    """(missing, wrong-type, extra) examples for a line shape, as Lark's GRAMMAR_ERRORS."""
-    good = [("R0" if kind != "number" else "1") for _, kind in shape]
-    missing = [" ".join((*prefix, *good[:k])) for k in range(1, len(good))]
-    wrong = [
-        " ".join((*prefix, *good[:k], _wrong_token(kind)))
-        for k, (_, kind) in enumerate(shape)
-        if kind in ("number", "id")
-    ]
-    return missing, wrong
+    Returns (missing, expected-number, expected-id) example lines.
+    """
+    good = ["1" if kind == "number" else "R0" for _, kind in shape]
+    missing = [" ".join(good[:k]) for k in range(1, len(good))]
+    not_number = [" ".join([*good[:k], "x"]) for k, (_, kind) in enumerate(shape) if kind == "number"]
+    not_id = [" ".join([*good[:k], "7"]) for k, (_, kind) in enumerate(shape) if kind == "id"]
+    return missing, not_number, not_id
 
 
 def _build_syntax_errors() -> dict[str, dict[str, list[str]]]:
@@ -262,10 +258,10 @@ def _build_syntax_errors() -> dict[str, dict[str, list[str]]]:
 
     full = {name: " ".join("R0" if k != "number" else "1" for _, k in s) for name, s in LINE_SHAPES.items()}
     for rule in ("room_line", "adjacency_line", "position_line", "connection_line", "hint_line"):
-        missing, wrong = _shape_examples(LINE_SHAPES[rule])
+        missing, not_number, not_id = _shape_examples(LINE_SHAPES[rule])
         add(E_MISSING_VALUE, rule, missing)
-        add(E_EXPECTED_NUMBER, rule, [w for w in wrong if w.endswith(" x") or w == "x"])
-        add(E_EXPECTED_ID, rule, [w for w in wrong if w.endswith(" 7") or w == "7"])
+        add(E_EXPECTED_NUMBER, rule, not_number)
+        add(E_EXPECTED_ID, rule, not_id)
     for rule in ("adjacency_line", "position_line", "connection_line", "hint_line"):
         add(E_EXTRA_VALUE, rule, [full[rule] + " extra", full[rule] + " 1", full[rule] + " w=1"])
     add(E_EXTRA_VALUE, "room_line", [full["room_line"] + " cover=1 extra", full["room_line"] + " cover=1 2"])
@@ -476,9 +472,11 @@ def split_sections(
             continue
         col = len(raw) - len(raw.lstrip()) + 1
         first = words[0]
-        looks_like_header = (
-            len(words) == 1 and re.fullmatch(r"[A-Za-z_]+", first) is not None and section != "clusters"
-        )
+        # A lone word is a misspelled section name, except in `clusters`, where a lone word
+        # is a cluster id: there only a near miss (`hint`, `setings`) counts as a typo.
+        looks_like_header = len(words) == 1 and re.fullmatch(r"[A-Za-z_]+", first) is not None
+        if looks_like_header and section == "clusters":
+            looks_like_header = bool(difflib.get_close_matches(first.lower(), SECTIONS, n=1, cutoff=0.8))
         if section is None or looks_like_header:
             guess = _suggest(first.lower(), SECTIONS)
             if looks_like_header and (section is None or guess is not None):
