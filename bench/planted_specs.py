@@ -23,6 +23,7 @@ from layoutdsl.ast import (
     Cluster,
     ClusterMember,
     Connection,
+    Hint,
     Obstacle,
     Position,
     Room,
@@ -220,6 +221,8 @@ def campus_constraints() -> tuple[Spec, Layout, str]:
         "campus_constraints", rooms, Boundary(24.0, 17.0, CAMPUS_OBSTACLES), _adj(CAMPUS_ADJ),
         positions=(Position("R0", 9.0, 3.0), Position("E1", 22.0, 12.0)),
         connections=(Connection("C0", 2.0, 8.0, 22.0, 8.0),),
+        # the planted rectangles themselves, as starting points for the solver
+        hints=tuple(Hint(p[0], *p[3:7]) for p in CAMPUS_PLACED),
         clusters=(
             # the two labs stay side by side (centre points in the cluster's own frame)
             Cluster("LABS", (ClusterMember("R1", 0.0, 0.0), ClusterMember("R2", 5.0, 0.0))),
@@ -234,7 +237,7 @@ def campus_constraints() -> tuple[Spec, Layout, str]:
         "# A campus block that uses every optional constraint of the language: an obstacle\n"
         "# (a column block), fixed positions, a connection that makes the corridor span the\n"
         "# building, a cluster keeping the two labs side by side, an entrance on the boundary\n"
-        "# (onB) and a settings section.\n"
+        "# (onB), hints (the rectangles this spec was derived from) and a settings section.\n"
     )
     return spec, _layout(spec.name, 24.0, 17.0, spec, CAMPUS_PLACED, CAMPUS_OBSTACLES), header
 
