@@ -213,6 +213,14 @@ E_POINTS_TOO_FAR = register(
     "connections\nR0 1 1 1 30     # R0 is at most 10 m long",
 )  # fmt: skip
 
+E_SHARED_POINT = register(
+    "E218", Severity.ERROR, "two rooms must cover the same point",
+    "Reports two different rooms whose fixed points (positions or connection points) are "
+    "closer than the wall thickness in both x and y.",
+    "Rooms are at least `walldim` apart (5.8), so no two rooms can both cover such points.",
+    "positions\nR0 3 3\nR1 3.1 3",
+)  # fmt: skip
+
 # ===== Codes: W3xx warnings =====
 
 W_COMPONENTS = register(
@@ -244,6 +252,12 @@ def _span(node, field: str | None = None) -> Span:
         if span is not None:
             return span
     return node.span or _FALLBACK_SPAN
+
+
+def _pair_span(node, first: str, last: str) -> Span:
+    """From the start of one field to the end of another (a point's `x y`)."""
+    a, b = _span(node, first), _span(node, last)
+    return Span(a.line, a.col, b.end_line, b.end_col) if (a.line, a.col) <= (b.line, b.col) else a
 
 
 def _diag(spec: Spec, code: str, message: str, span: Span, label: str = "", help: str | None = None,
@@ -628,6 +642,34 @@ def check_points(spec: Spec) -> Iterator[Diagnostic]:
                         warning=True)  # fmt: skip
 
 
+def check_shared_points(spec: Spec) -> Iterator[Diagnostic]:
+    """E218: points that different rooms must cover are at least a wall apart."""
+    gap = spec.settings.walldim
+    points: list[tuple[float, float, str, Span]] = []
+    for p in spec.positions:
+        points.append((p.x, p.y, p.room, _pair_span(p, "x", "y")))
+    for c in spec.connections:
+        points.append((c.x1, c.y1, c.room, _pair_span(c, "x1", "y1")))
+        points.append((c.x2, c.y2, c.room, _pair_span(c, "x2", "y2")))
+    points.sort(key=lambda p: (p[0], p[1]))
+    reported: set[frozenset[str]] = set()
+    for i, (x, y, room, span) in enumerate(points):
+        # sweep along x: only points less than a wall further right can clash
+        for x2, y2, room2, span2 in points[i + 1 :]:
+            if x2 - x >= gap:
+                break
+            pair = frozenset((room, room2))
+            if room2 != room and abs(y2 - y) < gap and pair not in reported:
+                reported.add(pair)
+                first, second = sorted(((span, room, x, y), (span2, room2, x2, y2)), key=lambda t: (t[0].line, t[0].col))
+                yield _diag(spec, E_SHARED_POINT,
+                            f"`{first[1]}` and `{second[1]}` must both cover points less than a wall "
+                            f"({_n(gap)} m) apart: ({_n(first[2])}, {_n(first[3])}) and ({_n(second[2])}, {_n(second[3])})",
+                            second[0], "too close to the other room's point",
+                            "move one of the points at least a wall thickness away",
+                            (f"`{first[1]}`'s point is on line {first[0].line}",))  # fmt: skip
+
+
 # ===== Topology =====
 
 
@@ -721,6 +763,7 @@ CHECKS = (
     check_fit,
     check_doors,
     check_points,
+    check_shared_points,
     check_planarity,
     check_components,
 )
