@@ -398,18 +398,21 @@ def _room_bounds_ok(room: Room) -> bool:
     )  # fmt: skip
 
 
+def reachable_ratios(room: Room) -> tuple[float, float]:
+    """The aspect ratios max(w,h)/min(w,h) over w in [minw, maxw], h in [minh, maxh].
+
+    They form an interval: w/h ranges over [minw/maxh, maxw/minh], and the ratio is
+    max(w/h, h/w), so the ends come from the rectangle's corners, except that 1 (a square)
+    is reachable whenever the two ranges overlap.
+    """
+    corners = [max(w, h) / min(w, h) for w in (room.min_w, room.max_w) for h in (room.min_h, room.max_h)]
+    overlap = max(room.min_w, room.min_h) <= min(room.max_w, room.max_h)
+    return (1.0 if overlap else min(corners)), max(corners)
+
+
 def _aspect_ratio_possible(room: Room) -> bool:
     """Is there w in [minw, maxw], h in [minh, maxh] with max(w,h)/min(w,h) in [minar, maxar]?"""
-    # The reachable ratios form an interval: its ends come from the rectangle's corners,
-    # except that a square is reachable whenever the two ranges overlap.
-    corners = [
-        max(w, h) / min(w, h)
-        for w in (room.min_w, room.max_w)
-        for h in (room.min_h, room.max_h)
-    ]
-    highest = max(corners)
-    overlap = max(room.min_w, room.min_h) <= min(room.max_w, room.max_h)
-    lowest = 1.0 if overlap else min(corners)
+    lowest, highest = reachable_ratios(room)
     return lowest <= room.max_ar * (1 + 1e-12) and highest >= room.min_ar * (1 - 1e-12)
 
 
@@ -464,10 +467,8 @@ def check_room_sizes(spec: Spec) -> Iterator[Diagnostic]:
 
 
 def _ratio_range(room: Room) -> str:
-    corners = [max(w, h) / min(w, h) for w in (room.min_w, room.max_w) for h in (room.min_h, room.max_h)]
-    overlap = max(room.min_w, room.min_h) <= min(room.max_w, room.max_h)
-    lowest = 1.0 if overlap else min(corners)
-    return f"from {lowest:.3g} to {max(corners):.3g}"
+    lowest, highest = reachable_ratios(room)
+    return f"from {lowest:.3g} to {highest:.3g}"
 
 
 def _obstacle_area_inside(spec: Spec) -> float:
