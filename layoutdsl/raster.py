@@ -245,9 +245,14 @@ def _space_points(space: Space) -> list[tuple[float, float]]:
     return points
 
 
-def _nearest_wall_direction(space: Space, px: float, py: float) -> tuple[float, float] | None:
-    """Unit direction (file units) of the WALL segment of `space` nearest to (px, py)."""
-    best: tuple[float, tuple[float, float]] | None = None
+def _nearest_wall_direction(space: Space, px: float, py: float, tie: float) -> tuple[float, float] | None:
+    """Unit direction (file units) of the WALL segment of `space` the point (px, py) lies on.
+
+    A door point often sits where two walls meet (the file splits the wall there, and
+    hand-drawn jogs add short slanted pieces); among the walls within `tie` of the nearest
+    one the longest wins, because that is the wall the door is in.
+    """
+    candidates: list[tuple[float, float, tuple[float, float]]] = []
     for segment in space.segments:
         if segment.cls != "WALL":
             continue
@@ -257,12 +262,74 @@ def _nearest_wall_direction(space: Space, px: float, py: float) -> tuple[float, 
         if length_sq == 0:
             continue
         t = max(0.0, min(1.0, ((px - ax) * dx + (py - ay) * dy) / length_sq))
-        qx, qy = ax + t * dx, ay + t * dy
-        distance = math.hypot(px - qx, py - qy)
-        if best is None or distance < best[0]:
-            length = math.sqrt(length_sq)
-            best = (distance, (dx / length, dy / length))
-    return None if best is None else best[1]
+        distance = math.hypot(px - (ax + t * dx), py - (ay + t * dy))
+        length = math.sqrt(length_sq)
+        candidates.append((distance, length, (dx / length, dy / length)))
+    if not candidates:
+        return None
+    nearest = min(distance for distance, _, _ in candidates)
+    close = [c for c in candidates if c[0] <= nearest + tie]
+    return max(close, key=lambda c: c[1])[2]
+
+
+def _wall_run(
+    space: Space, px: float, py: float, ux: float, uy: float, tolerance: float
+) -> tuple[float, float] | None:
+    """The stretch of `space`'s boundary along the door line through (px, py), as an interval.
+
+    Positions are measured along (ux, uy) from the door point, in file units. Segments
+    parallel to the door and within `tolerance` of its line are merged when they touch
+    (hand-drawn plans leave small gaps); the run containing the door point is returned.
+    """
+    intervals: list[tuple[float, float]] = []
+    for segment in space.segments:
+        ax, ay, bx, by = segment.p1.x, segment.p1.y, segment.p2.x, segment.p2.y
+        dx, dy = bx - ax, by - ay
+        length = math.hypot(dx, dy)
+        if length == 0:
+            continue
+        if abs(dx * uy - dy * ux) / length > 0.1:  # not parallel (about 6°)
+            continue
+        if abs((ax - px) * uy - (ay - py) * ux) > tolerance:  # not on the door's line
+            continue
+        ta = (ax - px) * ux + (ay - py) * uy
+        tb = (bx - px) * ux + (by - py) * uy
+        intervals.append((min(ta, tb), max(ta, tb)))
+    if not intervals:
+        return None
+    intervals.sort()
+    runs: list[list[float]] = []
+    for lo, hi in intervals:
+        if runs and lo <= runs[-1][1] + tolerance:
+            runs[-1][1] = max(runs[-1][1], hi)
+        else:
+            runs.append([lo, hi])
+    for lo, hi in runs:
+        if lo - tolerance <= 0.0 <= hi + tolerance:
+            return (lo, hi)
+    return None
+
+
+def _door_interval(half_length: float, runs: list[tuple[float, float]], clearance: float) -> tuple[float, float]:
+    """The door's extent along its wall: slid (or, if need be, cut) to fit every run.
+
+    A door drawn near a corner would otherwise reach past the end of its wall, or cut the
+    end of the perpendicular wall there, and open into a third room; the door must stay on
+    the wall both of its rooms share, `clearance` away from its ends.
+    """
+    lo, hi = -half_length, half_length
+    if not runs:
+        return lo, hi
+    run_lo = max(r[0] for r in runs)
+    run_hi = min(r[1] for r in runs)
+    if run_hi - run_lo > 2 * clearance:
+        run_lo, run_hi = run_lo + clearance, run_hi - clearance
+    if run_hi <= run_lo:  # the rooms' walls do not overlap: keep the door where it is
+        return lo, hi
+    if run_hi - run_lo <= 2 * half_length:
+        return run_lo, run_hi
+    shift = max(0.0, run_lo - lo) - max(0.0, hi - run_hi)
+    return lo + shift, hi + shift
 
 
 def rasterize_building(
@@ -270,8 +337,11 @@ def rasterize_building(
 ) -> OccupancyGrid:
     """Occupancy grid of a building XML plan, following the thesis' map preparation (§6.3.6).
 
-    The plan's frame in metres is x = x_file·s, y = −y_file·s (s = metres per file unit):
-    the file's y grows downwards, the grid's frame grows upwards.
+    Every WALL segment is a black line `wall_width` metres wide, every space polygon is free
+    inside, and every PORTAL is a door opening: its own length when it is a segment, else
+    the plan's door size (`<real_distance>`), along the wall it lies on, kept within the
+    wall the two rooms share. The plan's frame in metres is x = x_file·s, y = −y_file·s
+    (s = metres per file unit): the file's y grows downwards, the grid's frame grows upwards.
     """
     if not resolution > 0:
         raise ValueError(f"resolution must be positive, got {resolution}")
@@ -308,11 +378,26 @@ def rasterize_building(
                     fill=0,
                     width=line_px,
                 )
-    door_m = building.real_distance_m
+    for corners in _door_openings(building, wall_width, resolution):
+        draw.polygon([to_pixel(x, y) for x, y in corners], fill=255)
+    occupied = np.asarray(image) < 128
+    # the one-cell frame that makes the dark-pixel bounding box equal the image
+    occupied[0, :] = occupied[-1, :] = True
+    occupied[:, 0] = occupied[:, -1] = True
+    return OccupancyGrid(occupied=occupied, resolution=resolution, origin=(x0, y0))
+
+
+def _door_openings(building: Building, wall_width: float, resolution: float) -> list[list[tuple[float, float]]]:
+    """Each PORTAL's opening as a rotated rectangle (four corners, file units)."""
+    scale = building.metres_per_unit
+    spaces = {space.id: space for space in building.spaces}
     # Deep enough to cross a wall line and the small gaps hand-drawn plans leave between
-    # the walls of two neighbouring spaces, shallow enough not to cut into the rooms.
-    depth_m = 2 * wall_width + 2 * resolution
+    # the walls of two neighbouring spaces, shallow enough not to cut far into the rooms.
+    half_depth = (1.5 * wall_width + resolution) / scale
+    tolerance = max(2 * wall_width, 0.1) / scale
+    openings = []
     for space in building.spaces:
+        other_of = {p.segment_id: p.targets for p in space.portals}
         for segment in space.segments:
             if segment.cls != "PORTAL":
                 continue
@@ -320,25 +405,22 @@ def rasterize_building(
             length_units = math.hypot(bx - ax, by - ay)
             cx, cy = (ax + bx) / 2, (ay + by) / 2
             if length_units * scale > resolution:
-                direction = ((bx - ax) / length_units, (by - ay) / length_units)
-                door_len_m = length_units * scale
+                ux, uy = (bx - ax) / length_units, (by - ay) / length_units
+                half_length = length_units / 2
             else:
-                found = _nearest_wall_direction(space, cx, cy)
+                found = _nearest_wall_direction(space, cx, cy, tolerance / 2)
                 if found is None:
                     continue
-                direction = found
-                door_len_m = door_m
-            ux, uy = direction
+                ux, uy = found
+                half_length = building.real_distance_m / scale / 2
+            sharing = [space] + [spaces[t] for t in other_of.get(segment.id, ()) if t in spaces and t != space.id]
+            runs = [run for sp in sharing if (run := _wall_run(sp, cx, cy, ux, uy, tolerance)) is not None]
+            lo, hi = _door_interval(half_length, runs, wall_width / scale)
             nx, ny = -uy, ux
-            half_len = door_len_m / scale / 2
-            half_depth = depth_m / scale / 2
-            corners = [
-                (cx + sx * ux * half_len + sd * nx * half_depth, cy + sx * uy * half_len + sd * ny * half_depth)
-                for sx, sd in ((-1, -1), (1, -1), (1, 1), (-1, 1))
-            ]
-            draw.polygon([to_pixel(x, y) for x, y in corners], fill=255)
-    occupied = np.asarray(image) < 128
-    # the one-cell frame that makes the dark-pixel bounding box equal the image
-    occupied[0, :] = occupied[-1, :] = True
-    occupied[:, 0] = occupied[:, -1] = True
-    return OccupancyGrid(occupied=occupied, resolution=resolution, origin=(x0, y0))
+            openings.append(
+                [
+                    (cx + t * ux + d * nx * half_depth, cy + t * uy + d * ny * half_depth)
+                    for t, d in ((lo, -1), (hi, -1), (hi, 1), (lo, 1))
+                ]
+            )
+    return openings

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from _emit_support import CASES, assert_topology_matches, load_case, pair_room, region_meetings, school_layout
 
-from layoutdsl.building import BoundingBox, Building, LineSegment, Point, Space
+from layoutdsl.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space
 from layoutdsl.layout import Layout, PlacedRoom, make_portal
 from layoutdsl.raster import OccupancyGrid, rasterize_building, rasterize_layout
 
@@ -95,24 +95,32 @@ def test_bad_resolution_is_a_value_error() -> None:
 # ----------------------------------------------------------------------------- real plans
 
 
-def _square(space_id: str, x0: float, y0: float, size: float, portal_at: tuple[float, float] | None) -> Space:
-    corners = [(x0, y0), (x0 + size, y0), (x0 + size, y0 + size), (x0, y0 + size)]
+def _rect_space(space_id: str, x0: float, y0: float, w: float, h: float, door: tuple[float, float] | None, other: str = "") -> Space:
+    corners = [(x0, y0), (x0 + w, y0), (x0 + w, y0 + h), (x0, y0 + h)]
     segments = [
         LineSegment(f"{space_id}-w{i}", Point(*corners[i]), Point(*corners[(i + 1) % 4]), "WALL", "EXPLICIT")
         for i in range(4)
     ]
-    if portal_at is not None:
-        segments.append(LineSegment(f"{space_id}-p", Point(*portal_at), Point(*portal_at), "PORTAL", "EXPLICIT"))
+    portals = ()
+    if door is not None:
+        segment = LineSegment(f"{space_id}-p", Point(*door), Point(*door), "PORTAL", "EXPLICIT")
+        segments.append(segment)
+        if other:
+            portals = (BuildingPortal(segment.id, "EXPLICIT", (space_id, other), segment),)
     return Space(
         id=space_id,
         rtype="R",
         label="ROOM",
-        centroid=Point(x0 + size / 2, y0 + size / 2),
-        bbox=BoundingBox(x0, y0, x0 + size, y0 + size),
+        centroid=Point(x0 + w / 2, y0 + h / 2),
+        bbox=BoundingBox(x0, y0, x0 + w, y0 + h),
         polygon=tuple(Point(*c) for c in corners),
         segments=tuple(segments),
-        portals=(),
+        portals=portals,
     )
+
+
+def _square(space_id: str, x0: float, y0: float, size: float, portal_at: tuple[float, float] | None) -> Space:
+    return _rect_space(space_id, x0, y0, size, size, portal_at)
 
 
 def _two_squares(with_portal: bool) -> Building:
@@ -163,3 +171,25 @@ def test_real_plan_grid_covers_the_plan_in_metres() -> None:
     assert grid.origin[0] <= 0.0 and grid.origin[0] + grid.width_m >= 6.0
     assert grid.origin[1] <= -3.0 and grid.origin[1] + grid.height_m >= 0.0
     assert math.isclose(grid.resolution, 0.1)
+
+
+def test_a_real_plan_door_near_a_corner_stays_on_the_shared_wall() -> None:
+    # L (3 × 3 m) has a closet C (1 × 1 m) and a room R beside it along x = 300; the
+    # closet's door is drawn 0.2 m from its corner, so a centred 0.9 m door would reach
+    # past the closet into R. It must be slid onto the wall L and C share.
+    door = (300.0, 80.0)
+    building = Building(
+        "corner",
+        90.0,
+        0.9,
+        (
+            _rect_space("L", 0, 0, 300, 300, door, "C"),
+            _rect_space("C", 300, 0, 100, 100, door, "L"),
+            _rect_space("R", 300, 100, 300, 200, None),
+        ),
+    )
+    grid = rasterize_building(building)
+    centre = {"L": (1.5, -1.5), "C": (3.5, -0.5), "R": (4.5, -2.0)}
+    assert _connected(grid, centre["L"], centre["C"])
+    assert not _connected(grid, centre["L"], centre["R"])
+    assert not _connected(grid, centre["C"], centre["R"])
