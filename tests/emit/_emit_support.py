@@ -115,3 +115,32 @@ def assert_topology_matches(layout: Layout, resolution: float = 0.05) -> None:
         f"regions meet without a portal: {sorted(map(sorted, met - expected))}; "
         f"portals that do not open: {sorted(map(sorted, expected - met))}"
     )
+
+
+ROOT = HERE.parents[1]
+SPEC_FILES = sorted((ROOT / "specs").glob("*.lay"))
+
+
+def planted_layouts() -> dict[str, Layout]:
+    """The verified planted layout behind each spec in specs/ (bench/planted_specs.py).
+
+    These are layouts of exactly the specs users compile, available without a solver; a
+    compiled layout of the same spec goes through the same emitters and rasterizer.
+    """
+    import importlib.util
+
+    module_spec = importlib.util.spec_from_file_location("planted_specs", ROOT / "bench" / "planted_specs.py")
+    planted = importlib.util.module_from_spec(module_spec)
+    module_spec.loader.exec_module(planted)
+    return {name: builder()[1] for name, builder in planted.BUILDERS.items()}
+
+
+def spec_adjacency(path: Path) -> tuple[dict[frozenset[str], str], dict[str, tuple[str, str]]]:
+    """A spec file's adjacency graph (pair -> 'e'/'i') and room id -> (type, label)."""
+    from layoutdsl.api import load_spec
+
+    spec, diagnostics = load_spec(str(path))
+    assert spec is not None, [d.message for d in diagnostics]
+    edges = {frozenset((a.a, a.b)): a.kind for a in spec.adjacencies}
+    rooms = {room.id: (room.rtype, room.label) for room in spec.rooms}
+    return edges, rooms

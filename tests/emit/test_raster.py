@@ -3,10 +3,21 @@
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
-from _emit_support import CASES, assert_topology_matches, load_case, pair_room, region_meetings, school_layout
+from _emit_support import (
+    CASES,
+    SPEC_FILES,
+    assert_topology_matches,
+    load_case,
+    pair_room,
+    planted_layouts,
+    region_meetings,
+    school_layout,
+    spec_adjacency,
+)
 
 from layoutdsl.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space
 from layoutdsl.layout import Layout, PlacedRoom, make_portal
@@ -193,3 +204,18 @@ def test_a_real_plan_door_near_a_corner_stays_on_the_shared_wall() -> None:
     assert _connected(grid, centre["L"], centre["C"])
     assert not _connected(grid, centre["L"], centre["R"])
     assert not _connected(grid, centre["C"], centre["R"])
+
+
+# ----------------------------------------------------------------------------- specs/
+
+
+PLANTED = planted_layouts()
+
+
+@pytest.mark.parametrize("spec_file", SPEC_FILES, ids=[p.stem for p in SPEC_FILES])
+def test_bitmap_topology_equals_the_specs_adjacency_for_every_spec(spec_file: Path) -> None:
+    assert spec_file.stem in PLANTED, f"no planted layout for {spec_file.name} in bench/planted_specs.py"
+    layout = PLANTED[spec_file.stem]
+    edges, _rooms = spec_adjacency(spec_file)
+    met = region_meetings(layout, rasterize_layout(layout))
+    assert met == set(edges)

@@ -7,7 +7,7 @@ from collections import deque
 from pathlib import Path
 
 import pytest
-from _emit_support import CASES, load_case, school_layout
+from _emit_support import CASES, SPEC_FILES, load_case, planted_layouts, school_layout, spec_adjacency
 from defusedxml import ElementTree
 
 from layoutdsl.emit import write_outputs
@@ -137,3 +137,13 @@ def test_ids_are_deterministic_and_text_is_escaped() -> None:
     assert render_xml(layout) == render_xml(load_case(Path(__file__).parent / "single_room"))
     root = ElementTree.fromstring(render_xml(layout).encode())
     assert root.findtext("floor/spaces/space/labels/label") == 'STUDIO "A" & <B>'
+
+
+@pytest.mark.parametrize("spec_file", SPEC_FILES, ids=[p.stem for p in SPEC_FILES])
+def test_xml_of_every_spec_has_the_specs_graph_labels_and_types(spec_file: Path, tmp_path: Path) -> None:
+    layout = planted_layouts()[spec_file.stem]
+    edges, rooms = spec_adjacency(spec_file)
+    building, _ = read_building(_written(layout, tmp_path))
+    assert building is not None
+    assert {space.id: (space.rtype, space.label) for space in building.spaces} == rooms
+    assert building.portal_edges() == {pair: TYPE[kind] for pair, kind in edges.items()}
