@@ -105,6 +105,8 @@ def compile_spec(
     strategy 'auto': a first feasible layout from `start`, else from `start_provider` (by
     default the construction of issue 6), handed to SCIP as its start for polishing; without
     a start, SCIP alone. The start itself is the answer if SCIP finds nothing better in time.
+    strategy 'cycles': `layoutdsl.cycles.compile_with_cycles(spec, options, progress=...)`
+    (issue 6) when that module exists, else the same as 'auto'.
     """
     began = time.monotonic()
     deadline = began + options.time_limit
