@@ -89,6 +89,8 @@ class Text:
     size: int
     color: str = TEXT
     anchor: str = "mm"
+    angle: int = 0
+    """Counter-clockwise rotation in degrees (0 or 90), about (x, y)."""
     tag: str = ""
     kind: str = "text"
 
@@ -155,18 +157,36 @@ def _nice_length(max_metres: float) -> float:
     return best
 
 
-def _fit_label(room: PlacedRoom, box_w: float, box_h: float, base: int) -> tuple[int, list[str]]:
-    """The largest font size (≤ base) and lines (id, then the wrapped label) fitting the box."""
+def _fit_label(room: PlacedRoom, box_w: float, box_h: float, base: int) -> tuple[int, list[str], bool]:
+    """The largest font size (≤ base) and lines (id, then the wrapped label) fitting the box.
+
+    Returns (size, lines, rotated). A tall, narrow room (a corridor running up the page)
+    gets its text turned 90° when that allows a larger size.
+    """
+    upright = _fit_in(room, box_w, box_h, base)
+    if box_h > box_w:
+        turned = _fit_in(room, box_h, box_w, base)
+        if turned is not None and (upright is None or (turned[0], len(turned[1]) > 1) > (upright[0], len(upright[1]) > 1)):
+            return turned[0], turned[1], True
+    if upright is not None:
+        return upright[0], upright[1], False
+    # Too small for the label: keep the id, which a reader needs most.
+    return MIN_FONT, [room.id], False
+
+
+def _fit_in(room: PlacedRoom, box_w: float, box_h: float, base: int) -> tuple[int, list[str]] | None:
+    """The largest size whose lines fit a box (text running along its width), if any."""
     avail_w, avail_h = box_w * 0.92, box_h * 0.92
     for size in range(base, MIN_FONT - 1, -1):
         max_chars = max(1, int(avail_w / (size * CHAR_WIDTH)))
         label_lines = textwrap.wrap(room.label, max_chars, break_long_words=False) if room.label else []
-        lines = [room.id, *label_lines]
-        widest = max(text_width(line, size) for line in lines)
-        if widest <= avail_w and len(lines) * size * LINE_HEIGHT <= avail_h:
-            return size, lines
-    # Too small for the label: keep the id, which the legend-free reader needs most.
-    return MIN_FONT, [room.id]
+        for lines in ([room.id, *label_lines], [room.id]):
+            widest = max(text_width(line, size) for line in lines)
+            if widest <= avail_w and len(lines) * size * LINE_HEIGHT <= avail_h:
+                if len(lines) > 1 or not room.label or size == MIN_FONT:
+                    return size, lines
+                break  # the id alone fits but the label does not: try a smaller size first
+    return None
 
 
 class _Frame:
@@ -330,12 +350,16 @@ def drawing(layout: Layout, px_per_m: float | None = None) -> Drawing:
     for room in layout.rooms:
         left, top = frame.px(room.x, room.y2)
         right, bottom = frame.px(room.x2, room.y)
-        size, lines = _fit_label(room, right - left, bottom - top, base_font)
+        size, lines, rotated = _fit_label(room, right - left, bottom - top, base_font)
         cx, cy = (left + right) / 2, (top + bottom) / 2
         line_h = size * LINE_HEIGHT
-        first_y = cy - line_h * (len(lines) - 1) / 2
+        first = -line_h * (len(lines) - 1) / 2
         for index, line in enumerate(lines):
-            items.append(Text(cx, first_y + index * line_h, line, size, tag=f"label {room.id}"))
+            offset = first + index * line_h
+            if rotated:  # reading upwards, so the first line is the leftmost
+                items.append(Text(cx + offset, cy, line, size, angle=90, tag=f"label {room.id}"))
+            else:
+                items.append(Text(cx, cy + offset, line, size, tag=f"label {room.id}"))
 
     legend_top = margin + plan_h + base_font
     legend_items, legend_w, legend_h = _legend(layout, margin, legend_top, base_font, scale, max(plan_w, 600.0))
@@ -372,6 +396,17 @@ def _dashed(points: tuple[tuple[float, float], ...], on: float, off: float) -> l
     return dashes
 
 
+def _draw_turned_text(image: Image.Image, item: Text) -> None:
+    """Draw rotated text: render it upright on a transparent tile, turn it, paste it."""
+    font = _font(item.size)
+    left, top, right, bottom = font.getbbox(item.text, anchor="mm")
+    pad = 2
+    tile = Image.new("RGBA", (int(right - left) + 2 * pad, int(bottom - top) + 2 * pad), (0, 0, 0, 0))
+    ImageDraw.Draw(tile).text((tile.width / 2, tile.height / 2), item.text, fill=item.color, font=font, anchor="mm")
+    turned = tile.rotate(item.angle, expand=True)
+    image.paste(turned, (round(item.x - turned.width / 2), round(item.y - turned.height / 2)), turned)
+
+
 def render_png(picture: Drawing) -> bytes:
     """Paint a drawing with Pillow and return PNG bytes."""
     image = Image.new("RGB", (picture.width, picture.height), picture.background)
@@ -386,8 +421,10 @@ def render_png(picture: Drawing) -> bytes:
             else:
                 for start, end in _dashed(item.points, *item.dash):
                     draw.line([start, end], fill=item.color, width=item.width)
-        else:
+        elif item.angle == 0:
             draw.text((item.x, item.y), item.text, fill=item.color, font=_font(item.size), anchor=item.anchor)
+        else:
+            _draw_turned_text(image, item)
     buffer = io.BytesIO()
     image.save(buffer, format="PNG", optimize=False)
     return buffer.getvalue()

@@ -32,10 +32,11 @@ def _assert_labels_fit(layout: Layout, picture: png.Drawing, require_label: bool
         if require_label:
             assert " ".join(t.text for t in lines[1:]) == room.label
         for text in lines:
-            # centred text stays inside the room's rectangle
-            assert box.x0 <= text.x - text_width(text.text, text.size) / 2
-            assert text.x + text_width(text.text, text.size) / 2 <= box.x1
-            assert box.y0 <= text.y - text.size / 2 and text.y + text.size / 2 <= box.y1
+            # centred text stays inside the room's rectangle, turned or not
+            along, across = text_width(text.text, text.size) / 2, text.size / 2
+            half_w, half_h = (along, across) if text.angle == 0 else (across, along)
+            assert box.x0 <= text.x - half_w and text.x + half_w <= box.x1
+            assert box.y0 <= text.y - half_h and text.y + half_h <= box.y1
 
 
 def test_every_room_shows_its_id_and_label_inside_it() -> None:
@@ -115,3 +116,14 @@ def test_rendered_png_has_the_drawing_size_and_paints_rooms(case: Path) -> None:
 def test_drawing_is_deterministic() -> None:
     layout = school_layout(2, 3)
     assert drawing(layout).to_data() == drawing(layout).to_data()
+
+
+def test_a_tall_narrow_corridor_gets_its_label_turned() -> None:
+    layout = school_layout()
+    picture = drawing(layout)
+    spine = _tagged(picture, "label C0")  # 2 m wide, 53 m tall
+    assert [t.text for t in spine] == ["C0", "CORRIDOR"] and {t.angle for t in spine} == {90}
+    assert {t.angle for t in _tagged(picture, "label C1")} == {0}  # a corridor running across
+    _assert_labels_fit(layout, picture, require_label=True)
+    image = Image.open(io.BytesIO(render_png(picture)))
+    assert image.size == (picture.width, picture.height)
