@@ -215,20 +215,24 @@ def rasterize_layout(layout: Layout, resolution: float = DEFAULT_RESOLUTION) -> 
     rows, cols = labels.shape
     occupied = labels < 0
     occupied |= _separate_rooms(labels)
+    index_of = {room.id: index for index, room in enumerate(layout.rooms)}
     for portal in layout.portals:
         block = _door_cells(portal, layout, x0, y0, rows, cols, resolution)
         if block is None:
             continue
-        ends = {layout.rooms.index(layout.room(portal.a)), layout.rooms.index(layout.room(portal.b))}
         row_slice, col_slice = block
-        for row in range(row_slice.start, row_slice.stop):
-            for col in range(col_slice.start, col_slice.stop):
-                # Never open a cell that touches a third room: that would join rooms the
-                # layout keeps apart (possible only when walls are a single cell thick).
-                near = labels[max(0, row - 1) : row + 2, max(0, col - 1) : col + 2]
-                if np.any((near >= 0) & ~np.isin(near, list(ends))):
-                    continue
-                occupied[row, col] = False
+        a, b = index_of[portal.a], index_of[portal.b]
+        # Never open a cell that touches a third room (8-neighbourhood): that would join
+        # rooms the layout keeps apart (possible only when walls are a single cell thick).
+        # Blocks stay one cell inside the grid, so the surrounding ring always exists.
+        ring = labels[row_slice.start - 1 : row_slice.stop + 1, col_slice.start - 1 : col_slice.stop + 1]
+        height, width = row_slice.stop - row_slice.start, col_slice.stop - col_slice.start
+        touches_third = np.zeros((height, width), dtype=bool)
+        for d_row in range(3):
+            for d_col in range(3):
+                near = ring[d_row : d_row + height, d_col : d_col + width]
+                touches_third |= (near >= 0) & (near != a) & (near != b)
+        occupied[row_slice, col_slice] &= touches_third
     return OccupancyGrid(occupied=occupied, resolution=resolution, origin=(x0, y0))
 
 
