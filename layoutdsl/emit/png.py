@@ -215,6 +215,8 @@ def _portal_primitives(layout: Layout, portal: Portal, frame: _Frame, wall_px: i
     cx, cy = portal.centre
     items: list[Primitive] = []
     tick_px = max(1, wall_px // 2)
+    # a dashed line across the opening: no barrier, yet two spaces (seed §5.2)
+    dash_px = max(1, wall_px // 3)
     tag = f"{'door' if portal.kind == 'e' else 'implicit portal'} {portal.a}-{portal.b}"
     if portal.vertical:
         left, right = (a, b) if a.x < b.x else (b, a)
@@ -224,7 +226,7 @@ def _portal_primitives(layout: Layout, portal: Portal, frame: _Frame, wall_px: i
             for y in (lo, hi):
                 items.append(Line((frame.px(left.x2, y), frame.px(right.x, y)), WALL, tick_px, tag=tag))
         else:
-            items.append(Line((frame.px(cx, lo), frame.px(cx, hi)), IMPLICIT, 1, (6.0, 4.0), tag=tag))
+            items.append(Line((frame.px(cx, lo), frame.px(cx, hi)), IMPLICIT, dash_px, (6.0, 4.0), tag=tag))
     else:
         low, high = (a, b) if a.y < b.y else (b, a)
         lo, hi = max(cx - half, a.x, b.x), min(cx + half, a.x2, b.x2)
@@ -233,7 +235,7 @@ def _portal_primitives(layout: Layout, portal: Portal, frame: _Frame, wall_px: i
             for x in (lo, hi):
                 items.append(Line((frame.px(x, low.y2), frame.px(x, high.y)), WALL, tick_px, tag=tag))
         else:
-            items.append(Line((frame.px(lo, cy), frame.px(hi, cy)), IMPLICIT, 1, (6.0, 4.0), tag=tag))
+            items.append(Line((frame.px(lo, cy), frame.px(hi, cy)), IMPLICIT, dash_px, (6.0, 4.0), tag=tag))
     return items
 
 
