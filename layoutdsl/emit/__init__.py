@@ -25,6 +25,9 @@ from layoutdsl.raster import DEFAULT_RESOLUTION
 
 DEFAULT_FORMATS = ("xml", "png", "world", "map")
 
+MAX_BITMAP_CELLS = 100_000_000
+"""Largest Stage/ROS bitmap: 10 000 × 10 000 cells (500 m square at 5 cm)."""
+
 
 class EmitError(ValueError):
     """A request the emitters cannot honour (unknown format, unknown robot room, ...)."""
@@ -95,6 +98,21 @@ def check_options(layout: Layout, *, robot_room: str | None, resolution: float) 
         raise EmitError(f"--robot-room `{robot_room}` is not a room of `{layout.name}` (rooms: {ids})")
     if not layout.rooms:
         raise EmitError(f"layout `{layout.name}` has no rooms to emit")
+    room_ids = {room.id for room in layout.rooms}
+    for portal in layout.portals:
+        for end in (portal.a, portal.b):
+            if end not in room_ids:
+                raise EmitError(f"layout `{layout.name}` has a portal to unknown room `{end}`")
+    # The bitmaps hold a few bytes per cell; refuse sizes that would exhaust memory
+    # instead of failing (or swapping) halfway through.
+    span_x = max(r.x2 for r in layout.rooms) - min(r.x for r in layout.rooms)
+    span_y = max(r.y2 for r in layout.rooms) - min(r.y for r in layout.rooms)
+    cells = (span_x / resolution + 4) * (span_y / resolution + 4)
+    if cells > MAX_BITMAP_CELLS:
+        raise EmitError(
+            f"a {span_x:g} m × {span_y:g} m bitmap at {resolution:g} m per cell has {cells:.3g} cells "
+            f"(at most {MAX_BITMAP_CELLS:.0e}); choose a coarser resolution"
+        )
 
 
 def render_outputs(

@@ -19,6 +19,7 @@ from __future__ import annotations
 import io
 import math
 import textwrap
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, replace
 from functools import cache
 
@@ -259,9 +260,9 @@ def _legend(layout: Layout, x0: float, y0: float, font: int, scale: float, max_w
     swatch = font * 1.4
     gap = font * 1.2
     row_h = swatch + font * 0.8
-    entries: list[tuple[str, list[Primitive]]] = []
+    entries: list[tuple[str, Callable[[float, float], list[Primitive]]]] = []
 
-    def place(label: str, make) -> None:
+    def place(label: str, make: Callable[[float, float], list[Primitive]]) -> None:
         entries.append((label, make))
 
     for rtype in ("R", "C", "E"):

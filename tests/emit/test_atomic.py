@@ -6,11 +6,14 @@ import os
 from pathlib import Path
 
 import pytest
-from _emit_support import CASES, load_case
+from _emit_support import load_case
 
 import layoutdsl.emit as emit
 from layoutdsl.atomic import write_files_atomic, write_text_atomic
 from layoutdsl.emit import EMITTERS, EmitError, write_outputs
+
+
+SMALL = Path(__file__).parent / "small_office"
 
 
 def _listing(folder: Path) -> list[str]:
@@ -18,14 +21,14 @@ def _listing(folder: Path) -> list[str]:
 
 
 def test_all_formats_write_the_documented_files(tmp_path: Path) -> None:
-    paths = write_outputs(load_case(CASES[0]), tmp_path, "plan")
+    paths = write_outputs(load_case(SMALL), tmp_path, "plan")
     assert [p.name for p in paths] == ["plan.xml", "plan.png", "plan.world", "plan.world.png", "plan.pgm", "plan.yaml"]
     assert _listing(tmp_path) == sorted(p.name for p in paths)  # no temporary files left
     assert all(p.stat().st_size > 0 for p in paths)
 
 
 def test_each_emitter_writes_only_its_own_files(tmp_path: Path) -> None:
-    layout = load_case(CASES[0])
+    layout = load_case(SMALL)
     written = {name: [p.name for p in emitter(layout, tmp_path / name, "plan")] for name, emitter in EMITTERS.items()}
     assert written == {
         "xml": ["plan.xml"],
@@ -37,15 +40,15 @@ def test_each_emitter_writes_only_its_own_files(tmp_path: Path) -> None:
 
 def test_unknown_format_names_the_valid_ones_and_writes_nothing(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="unknown output format `stage`.*xml, png, world, map"):
-        write_outputs(load_case(CASES[0]), tmp_path, "plan", ["xml", "stage"])
+        write_outputs(load_case(SMALL), tmp_path, "plan", ["xml", "stage"])
     assert _listing(tmp_path) == []
 
 
 def test_formats_may_be_a_comma_separated_string(tmp_path: Path) -> None:
-    paths = write_outputs(load_case(CASES[0]), tmp_path, "plan", "xml,map")
+    paths = write_outputs(load_case(SMALL), tmp_path, "plan", "xml,map")
     assert [p.name for p in paths] == ["plan.xml", "plan.pgm", "plan.yaml"]
     with pytest.raises(EmitError, match="no output format"):
-        write_outputs(load_case(CASES[0]), tmp_path, "plan", "")
+        write_outputs(load_case(SMALL), tmp_path, "plan", "")
 
 
 def test_an_emitter_failing_midway_leaves_no_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
@@ -56,7 +59,7 @@ def test_an_emitter_failing_midway_leaves_no_file(tmp_path: Path, monkeypatch: p
 
     monkeypatch.setattr(rosmap, "render", broken)  # the last format of the default order
     with pytest.raises(RuntimeError, match="renderer crashed"):
-        write_outputs(load_case(CASES[0]), tmp_path / "out", "plan")
+        write_outputs(load_case(SMALL), tmp_path / "out", "plan")
     assert _listing(tmp_path / "out") == []
 
 
@@ -75,7 +78,7 @@ def test_a_write_failing_midway_rolls_back_and_restores_old_files(tmp_path: Path
 
     monkeypatch.setattr(os, "replace", flaky_replace)
     with pytest.raises(OSError, match="No space left"):
-        write_outputs(load_case(CASES[0]), out, "plan")
+        write_outputs(load_case(SMALL), out, "plan")
     monkeypatch.setattr(os, "replace", real_replace)
     assert _listing(out) == ["plan.xml"]
     assert (out / "plan.xml").read_text() == "previous run\n"
@@ -97,3 +100,19 @@ def test_write_set_rejects_a_path_given_twice(tmp_path: Path) -> None:
 def test_emit_module_exports_the_interface() -> None:
     assert set(EMITTERS) == {"xml", "png", "world", "map"}
     assert callable(emit.write_outputs) and issubclass(EmitError, ValueError)
+
+
+def test_a_portal_to_an_unknown_room_is_refused_before_writing(tmp_path: Path) -> None:
+    from dataclasses import replace
+
+    layout = load_case(SMALL)
+    broken = replace(layout, portals=(replace(layout.portals[0], b="R99"),))
+    with pytest.raises(EmitError, match="unknown room `R99`"):
+        write_outputs(broken, tmp_path, "plan")
+    assert _listing(tmp_path) == []
+
+
+def test_a_bitmap_too_large_for_memory_is_refused(tmp_path: Path) -> None:
+    with pytest.raises(EmitError, match="coarser resolution"):
+        write_outputs(load_case(SMALL), tmp_path, "plan", ["map"], resolution=0.0002)
+    assert _listing(tmp_path) == []
