@@ -103,9 +103,13 @@ def render_world(layout: Layout, grid: OccupancyGrid, stem: str, robot_room: str
 
 
 def bitmap_png(grid: OccupancyGrid) -> bytes:
-    """The grid as a black-and-white PNG (black = wall)."""
+    """The grid as a black-and-white PNG (black = wall), 8-bit grey.
+
+    8-bit rather than 1-bit: every image loader Stage has been built with reads 8-bit
+    grey, and the file stays small because it compresses to almost nothing.
+    """
     buffer = io.BytesIO()
-    grid.to_image().convert("1").save(buffer, format="PNG", optimize=True)
+    grid.to_image().save(buffer, format="PNG", optimize=True)
     return buffer.getvalue()
 
 

@@ -240,3 +240,10 @@ def test_quotes_in_the_name_cannot_break_the_world_file(tmp_path: Path) -> None:
     room = PlacedRoom("R0", "X", "R", 0, 0, 3, 3)
     world, _ = _world(Layout('my "big" house', 3, 3, 0.2, (room,), ()), tmp_path)
     assert world.problems == [] and world.instance("floorplan")["name"] == "my _big_ house"
+
+
+def test_bitmap_is_pure_black_and_white(tmp_path: Path) -> None:
+    write_outputs(school_layout(2, 3), tmp_path, "plan", ["world"])
+    image = Image.open(tmp_path / "plan.world.png")
+    assert image.mode == "L"
+    assert set(np.unique(np.asarray(image)).tolist()) == {0, 255}
