@@ -97,3 +97,56 @@ def test_comments_travel_with_their_lines() -> None:
     assert lines[0] == "# file header"
     assert lines[lines.index("R0 R1 1 e  # wide") - 1] == "# the door"
     assert lines[-1] == "# end"
+
+
+# ===== Generated specs: any numbers, ids and labels survive format -> parse =====
+
+from hypothesis import given, settings  # noqa: E402
+from hypothesis import strategies as st  # noqa: E402
+
+from layoutdsl.ast import ClusterMember, Cluster, Connection, Hint, Obstacle, Position  # noqa: E402
+
+_numbers = st.floats(allow_nan=False, allow_infinity=False, width=64)
+_weights = st.floats(0, 1e6)  # the language accepts only non-negative weights
+_ids = st.from_regex(r"[A-Za-z_][A-Za-z0-9_\-.]{0,6}", fullmatch=True)
+_words = st.from_regex(r"[A-Za-z0-9][A-Za-z0-9#=.\-]{0,5}", fullmatch=True)
+
+
+@st.composite
+def _specs(draw) -> Spec:
+    ids = draw(st.lists(_ids, min_size=1, max_size=4, unique=True))
+    rooms = tuple(
+        Room(rid, *draw(st.lists(_numbers, min_size=8, max_size=8)), draw(st.sampled_from("RCE")),
+             safe_label(" ".join(draw(st.lists(_words, min_size=1, max_size=3)))),
+             draw(st.booleans()), draw(_weights), draw(_weights))
+        for rid in ids
+    )  # fmt: skip
+    pick = st.sampled_from(ids)
+    return Spec(
+        "generated",
+        rooms,
+        Boundary(draw(_numbers), draw(_numbers), tuple(
+            Obstacle(f"O{i}", *draw(st.lists(_numbers, min_size=4, max_size=4))) for i in range(draw(st.integers(0, 2)))
+        )),
+        tuple(Adjacency(draw(pick), draw(pick), draw(_numbers), draw(st.sampled_from("ei")))
+              for _ in range(draw(st.integers(0, 3)))),
+        tuple(Position(draw(pick), draw(_numbers), draw(_numbers)) for _ in range(draw(st.integers(0, 2)))),
+        tuple(Connection(draw(pick), *draw(st.lists(_numbers, min_size=4, max_size=4)))
+              for _ in range(draw(st.integers(0, 2)))),
+        tuple(Cluster(f"K{i}", tuple(ClusterMember(draw(pick), draw(_numbers), draw(_numbers))
+                                     for _ in range(draw(st.integers(1, 3)))))
+              for i in range(draw(st.integers(0, 2)))),
+        tuple(Hint(draw(pick), *draw(st.lists(_numbers, min_size=4, max_size=4))) for _ in range(draw(st.integers(0, 2)))),
+        Settings(lambda_cover=draw(st.floats(0, 10)), seed=draw(st.integers(0, 2**40)),
+                 node_limit=draw(st.none() | st.integers(1, 10**6)),
+                 emphasis=draw(st.sampled_from(["default", "heuristics", "easycip"]))),
+    )  # fmt: skip
+
+
+@settings(max_examples=300, deadline=None, derandomize=True)
+@given(spec=_specs())
+def test_generated_specs_round_trip(spec: Spec) -> None:
+    """Structure only: the values need not make a sensible building, just survive the text."""
+    again, diagnostics = parse_source(Source("generated.lay", format_spec(spec)))
+    assert [d.message for d in diagnostics] == []
+    assert again == spec
