@@ -166,7 +166,7 @@ def _separate_rooms(labels: np.ndarray) -> np.ndarray:
     inside = labels >= 0
     for d_row, d_col in ((0, 1), (-1, 0), (-1, 1), (1, 1)):
         here = labels[max(0, -d_row) : rows - max(0, d_row), 0 : cols - d_col]
-        there = labels[max(0, d_row) : rows - max(0, -d_row) + 0, d_col:cols]
+        there = labels[max(0, d_row) : rows - max(0, -d_row), d_col:cols]
         clash = (here >= 0) & (there >= 0) & (here != there)
         wall[max(0, -d_row) : rows - max(0, d_row), 0 : cols - d_col] |= clash
     return wall & inside
