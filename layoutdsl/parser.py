@@ -343,14 +343,19 @@ def _syntax_diagnostic(
     code = name_syntax_error(rule, error)
     token = error.token if isinstance(error, UnexpectedToken) else None
     at_end = token is None or token.type == "$END"
-    if code is None:  # a state no example covers: classify by what was found
+    index = len(tokens) if at_end else sum(1 for t in tokens if t.start_pos < token.start_pos)
+    # match_examples may fall back to an example that failed in the same state on another
+    # token (a line cut short where this one has a stray `key=value`): name it by the token
+    if code is None or (code == E_MISSING_VALUE and not at_end):
+        kind = shape[index][1] if index < len(shape) else None
         if at_end:
             code = E_MISSING_VALUE
-        elif token.type == "NUMBER":
-            code = E_EXPECTED_ID if shape_name != "room_line" or len(tokens) < 11 else E_EXTRA_VALUE
+        elif kind == "number":
+            code = E_EXPECTED_NUMBER
+        elif kind in ("id", "label"):
+            code = E_EXPECTED_ID
         else:
-            code = E_EXPECTED_NUMBER if "NUMBER" in getattr(error, "expected", ()) else E_EXTRA_VALUE
-    index = len(tokens) if at_end else sum(1 for t in tokens if t.start_pos < token.start_pos)
+            code = E_EXTRA_VALUE
     field_name = shape[index][0] if index < len(shape) else None
     help_text = f"a line of `{_SECTION_OF_RULE[rule]}` is `{synopsis}`"
     if shape_name in ("boundary_size", "obstacle"):
@@ -393,10 +398,12 @@ def _syntax_diagnostic(
                 code, f"expected {what}, found `{token}`", filename, span,
                 label="`key=value` weights go at the end of a room line", help=help_text,
             )  # fmt: skip
+        label = {"rtype": "expected R, C or E", "atype": "expected e or i"}.get(
+            field_name or "", "ids must not be numbers"
+        )
         return Diagnostic(
-            code, f"expected {what}, found {found}", filename, span,
-            label="ids must not be numbers", help=help_text,
-        )  # fmt: skip
+            code, f"expected {what}, found {found}", filename, span, label=label, help=help_text
+        )
     # extra value
     last = shape[-1][0] if shape_name != "room_line" else "the room's weights"
     span = Span(line_no, token.column, line_no, len(_strip_comment(text)) + 1)
