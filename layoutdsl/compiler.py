@@ -12,14 +12,20 @@ import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
-import pyomo.environ as pyo
 
 from layoutdsl import explain
 from layoutdsl.ast import Spec
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
-from layoutdsl.model import THESIS_AS_WRITTEN, Rect, build_model, objective_of_rects, warm_start_from_rects
-from layoutdsl.solve import ProgressCallback, SolveOptions, SolveOutcome, relative_gap, solve
+from layoutdsl.model import (
+    THESIS_AS_WRITTEN,
+    Rect,
+    build_model,
+    objective_of_rects,
+    rects_from_model,
+    warm_start_from_rects,
+)
+from layoutdsl.solve import ProgressCallback, SolveOptions, SolveOutcome, polish, relative_gap, solve
 from layoutdsl.verify import verify
 
 StartProvider = Callable[[Spec, SolveOptions], "dict[str, Rect] | None"]
@@ -28,6 +34,9 @@ It must return within options.time_limit seconds (its share of the compile's lim
 
 START_SHARE = 0.5
 """Share of the time limit a start provider may use; SCIP gets the rest and any time left."""
+
+POLISH_SHARE = 0.1
+"""Share of the time limit for polishing a start with its relations fixed (solve.polish)."""
 
 
 @dataclass(slots=True)
@@ -82,14 +91,6 @@ def layout_from_rects(spec: Spec, rects: Mapping[str, Rect], info: SolveInfo | N
     )
 
 
-def _model_solution(model: pyo.ConcreteModel) -> tuple[dict[str, Rect], dict[str, int]]:
-    rects = {
-        r: tuple(float(pyo.value(v[r])) for v in (model.x, model.y, model.w, model.h)) for r in model.rooms
-    }
-    orientations = {r: int(round(pyo.value(model.o[r]))) for r in model.rooms}
-    return rects, orientations  # type: ignore[return-value]
-
-
 def compile_spec(
     spec: Spec,
     options: SolveOptions,
@@ -138,34 +139,59 @@ def compile_spec(
     t0 = time.monotonic()
     model = build_model(spec, formulation=formulation)
     timings["build"] = time.monotonic() - t0
+    polished: dict[str, Rect] | None = None
     if rects_start is not None:
         warm_start_from_rects(model, spec, rects_start)
+        # the start's relations with their best sizes and places: a much better start for SCIP
+        t0 = time.monotonic()
+        share = max(0.2, min(POLISH_SHARE * options.time_limit, deadline - time.monotonic()))
+        first_polish = polish(model, replace(options, time_limit=share, quiet=True))
+        if first_polish.has_solution:
+            polished = rects_from_model(model)
+        else:
+            warm_start_from_rects(model, spec, rects_start)
+        timings["polish"] = time.monotonic() - t0
 
     remaining = max(0.5, deadline - time.monotonic())
     t0 = time.monotonic()
     outcome = solve(model, replace(options, time_limit=remaining), progress=progress,
                     warm_start=rects_start is not None)
     timings["solve"] = time.monotonic() - t0
-
-    candidates: list[tuple[dict[str, Rect], dict[str, int] | None, str]] = []
     if outcome.has_solution:
-        rects, orient = _model_solution(model)
-        candidates.append((rects, orient, outcome.status))
+        # SCIP's incumbent need not be the best geometry for its own relations
+        t0 = time.monotonic()
+        incumbent = rects_from_model(model)
+        last = max(0.2, min(POLISH_SHARE * options.time_limit, 2.0))
+        if not polish(model, replace(options, time_limit=last, quiet=True)).has_solution:
+            warm_start_from_rects(model, spec, incumbent)
+        timings["polish"] = timings.get("polish", 0.0) + time.monotonic() - t0
+
+    # SCIP's (polished) incumbent, the polished start and the start itself: the best one
+    # that passes verification is the answer
+    candidates: list[tuple[dict[str, Rect], str]] = []
+    if outcome.has_solution:
+        candidates.append((rects_from_model(model), outcome.status))
+    if polished is not None:
+        candidates.append((polished, "construction"))
     if rects_start is not None:
-        candidates.append((rects_start, None, "construction"))
+        candidates.append((rects_start, "construction"))
 
     t0 = time.monotonic()
     failures = []
-    for rects, orient, status in candidates:
-        objective = objective_of_rects(spec, rects, orient)
+    first = outcome.first_solution_seconds
+    if method == "construction":
+        first = timings.get("start", 0.0)
+    elif first is not None:
+        first += timings["build"]
+    best: tuple[float, Layout, str] | None = None
+    for rects, status in candidates:
+        # (5.1) with o chosen per room as the thesis' model may choose it: the best
+        # orientation that satisfies (5.4)-(5.6)
+        objective = objective_of_rects(spec, rects)
+        if best is not None and objective >= best[0]:
+            continue
+        # SCIP's bound is a lower bound on (5.1) over all layouts, so it bounds every candidate
         gap = relative_gap(objective, outcome.bound) if outcome.bound is not None else None
-        if status == "construction" and outcome.has_solution:
-            gap = None  # the bound belongs to SCIP's incumbent, which failed verification
-        first = outcome.first_solution_seconds
-        if method == "construction":
-            first = timings.get("start", 0.0)
-        elif first is not None:
-            first += timings["build"]
         info = SolveInfo(
             status=status,
             objective=round_layout_number(objective),
@@ -178,12 +204,14 @@ def compile_spec(
         )
         layout = layout_from_rects(spec, rects, info)
         violations = verify(spec, layout)
-        if not violations:
-            timings["verify"] = time.monotonic() - t0
-            timings["total"] = time.monotonic() - began
-            return CompileResult(layout, [], status, timings, outcome)
-        failures.append(violations)
+        if violations:
+            failures.append(violations)
+        else:
+            best = (objective, layout, status)
     timings["verify"] = time.monotonic() - t0
+    if best is not None:
+        timings["total"] = time.monotonic() - began
+        return CompileResult(best[1], [], best[2], timings, outcome)
 
     if failures:
         diagnostics = [explain.verification_failed(spec, failures[0])]

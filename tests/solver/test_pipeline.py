@@ -13,8 +13,16 @@ import pytest
 from layoutdsl import exitcodes
 from layoutdsl.ast import Adjacency
 from layoutdsl.compiler import compile_spec, layout_from_rects
-from layoutdsl.model import THESIS_AS_WRITTEN, Formulation, build_model, objective_of_rects, rects_from_model, warm_start_from_rects
-from layoutdsl.solve import SolveOptions, solve
+from layoutdsl.model import (
+    THESIS_AS_WRITTEN,
+    Formulation,
+    build_model,
+    objective_of_rects,
+    rects_from_model,
+    relations_of_rects,
+    warm_start_from_rects,
+)
+from layoutdsl.solve import SolveOptions, polish, solve
 from layoutdsl.verify import verify
 
 from ._cases import room, spec
@@ -180,3 +188,23 @@ def test_compile_command_reads_stdin_and_reports_progress(tmp_path):
     assert done.returncode == exitcodes.OK, done.stderr
     assert "compiling `piped`" in done.stderr
     assert (tmp_path / "piped.layout.json").exists()
+
+
+def test_polish_finds_the_best_geometry_for_the_starts_relations():
+    model = build_model(FIVE)
+    warm_start_from_rects(model, FIVE, FIVE_RECTS)
+    orientations = {r: model.o[r].value for r in model.rooms}
+    outcome = polish(model, SolveOptions(time_limit=10, quiet=True))
+    assert outcome.status in ("optimal", "gap_limit")
+    polished = rects_from_model(model)
+    assert objective_of_rects(FIVE, polished) < objective_of_rects(FIVE, FIVE_RECTS) - 0.1
+    assert verify(FIVE, layout_from_rects(FIVE, polished)) == []
+    # the relations of the start (which side of each other the rooms lie) still hold
+    for (a, b), side in relations_of_rects(FIVE, FIVE_RECTS).items():
+        ax, ay, aw, ah = polished[a]
+        bx, by, bw, bh = polished[b]
+        holds = {"left": ax + aw + 0.2 <= bx + 1e-6, "right": bx + bw + 0.2 <= ax + 1e-6,
+                 "below": ay + ah + 0.2 <= by + 1e-6, "above": by + bh + 0.2 <= ay + 1e-6}
+        assert holds[side], (a, b, side)
+    assert {r: model.o[r].value for r in model.rooms} == orientations
+    assert not any(v.fixed for v in model.eq5_8_non_overlap.side.values())
