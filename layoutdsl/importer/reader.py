@@ -448,14 +448,23 @@ class _Reader:
                     label="both targets are the same space",
                 )
                 continue
-            segment_id = (portal_el.findtext("linesegment") or "").strip()
+            segment_el = portal_el.find("linesegment")
+            if segment_el is None:
+                self.report(
+                    codes.MISSING_ELEMENT,
+                    f"portal of space `{space_id}` has no `<linesegment>`",
+                    self.span(portal_el),
+                    label="the door's segment expected",
+                )
+                ok = False
+                continue
+            segment_id = (segment_el.text or "").strip()
             segment = (segments or {}).get(segment_id)
             if segment is None and segments is not None:
-                segment_el = portal_el.find("linesegment")
                 self.warn(
                     codes.PORTAL_SEGMENT_MISSING,
                     f"portal's line segment `{segment_id}` is not a segment of space `{space_id}`",
-                    self.span(segment_el if segment_el is not None else portal_el, whole=True),
+                    self.span(segment_el, whole=True),
                     label="the door's position is unknown",
                 )
             kind = (portal_el.findtext("type") or "").strip().upper()

@@ -265,3 +265,10 @@ def test_door_size_units(real, unit, door):
 def test_unknown_unit_is_an_error():
     _, diagnostics = read_building("plan.xml", text=_two_rooms(unit="inch"))
     assert [(d.code, d.message) for d in diagnostics] == [("E406", "unknown unit `inch` for the real distance")]
+
+
+def test_portal_without_linesegment_is_incomplete():
+    xml = _two_rooms().replace("            <linesegment>e</linesegment>\n", "", 1)
+    building, diagnostics = read_building("plan.xml", text=xml)
+    assert building is None
+    assert [(d.code, d.message) for d in diagnostics] == [("E402", "portal of space `b` has no `<linesegment>`")]
