@@ -20,7 +20,7 @@ import pytest
 from layoutdsl.api import lint_source
 from layoutdsl.diagnostics import has_errors
 from layoutdsl.format import format_spec
-from layoutdsl.importer import import_building
+from layoutdsl.importer import import_building, original_room_area, read_building
 from layoutdsl.source import Source
 
 CORPUS = Path(__file__).parents[2] / ".." / "shared" / "floorplans"
@@ -89,3 +89,7 @@ def test_real_plan_imports_lints_clean_and_keeps_its_portal_graph(plan: Path):
     components = nx.number_connected_components(graph)
     assert (len(spec.rooms), len(spec.adjacencies), components) == _index_counts()[plan.name]
     assert [h.room for h in spec.hints] == [r.id for r in spec.rooms]
+
+    # Rectangularization keeps each room's area (only the mindim repair adds a little).
+    target_area = sum(room.target_w * room.target_h for room in spec.rooms)
+    assert target_area == pytest.approx(original_room_area(read_building(plan)[0]), rel=0.003)
