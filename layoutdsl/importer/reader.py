@@ -289,14 +289,14 @@ class _Reader:
         )
         return None
 
-    def spaces(self, root: Element) -> list[tuple[Space, list[tuple[Element, Element]]]] | None:
+    def spaces(self, root: Element) -> list[tuple[Space, list[tuple[Element, list[Element]]]]] | None:
         floor = self.child(root, "floor", "the plan's rooms")
         if floor is None:
             return None
         spaces_el = self.child(floor, "spaces", "the list of rooms")
         if spaces_el is None:
             return None
-        result: list[tuple[Space, list[tuple[Element, Element]]]] = []
+        result: list[tuple[Space, list[tuple[Element, list[Element]]]]] = []
         seen: dict[str, Element] = {}
         # every id, also of spaces that failed to read: portals to them are not "unknown"
         self.space_ids = seen
@@ -425,7 +425,7 @@ class _Reader:
         return segments if ok else None
 
     def portals(self, element: Element, space_id: str, segments: dict[str, LineSegment] | None):
-        portals: list[tuple[BuildingPortal, tuple[Element, Element]]] = []
+        portals: list[tuple[BuildingPortal, tuple[Element, list[Element]]]] = []
         ok = True
         for portal_el in element.findall("portals/portal"):
             ids_el = portal_el.findall("target/id")
