@@ -112,3 +112,11 @@ def test_runs_as_a_program(tmp_path):
     assert result.returncode == 0, result.stderr
     assert "imported 17 rooms and 16 adjacencies" in result.stderr
     assert out.read_text().count("\n") > 17
+
+
+def test_same_plan_gives_the_same_bytes(tmp_path):
+    first, second = tmp_path / "a" / "plan.lay", tmp_path / "b" / "plan.lay"
+    for out in (first, second):
+        out.parent.mkdir()
+        assert main(["import", str(FIXTURES / "school_VarzeaPaulistaFDE2.xml"), "-o", str(out), "-q"]) == 0
+    assert first.read_bytes() == second.read_bytes()
