@@ -64,8 +64,11 @@ class _PositionedBuilder:
         else:
             self._root = element
         self._stack.append(element)
-        expat = self.parser.parser  # the callback runs while expat sits on this start tag
-        self.positions[id(element)] = (expat.CurrentLineNumber, expat.CurrentColumnNumber + 1)
+        # The callback runs while expat sits on this start tag. defusedxml's parser is the
+        # pure-Python one, which exposes its expat parser; without it positions are unknown.
+        expat = getattr(self.parser, "parser", None)
+        if expat is not None:
+            self.positions[id(element)] = (expat.CurrentLineNumber, expat.CurrentColumnNumber + 1)
         return element
 
     def end(self, tag: str) -> Element:
