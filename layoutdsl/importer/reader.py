@@ -560,8 +560,10 @@ def _parse(filename: str, data: bytes | str) -> tuple[Element | None, dict, list
             Diagnostic(codes.FORBIDDEN_XML, f"document type `{error.name}` is refused", filename, span)
         ]
     except DefusedXmlException as error:
-        expat = parser.parser
-        span = Span.point(expat.CurrentLineNumber or 1, (expat.CurrentColumnNumber or 0) + 1)
+        expat = getattr(parser, "parser", None)
+        line = (expat.CurrentLineNumber or 1) if expat is not None else 1
+        col = (expat.CurrentColumnNumber or 0) + 1 if expat is not None else 1
+        span = Span.point(line, col)
         return None, {}, [
             Diagnostic(
                 codes.FORBIDDEN_XML,
