@@ -314,7 +314,10 @@ SETTING_KEYS = (
 def _setting_value(key: str, text: str) -> tuple[Any, str | None]:
     """(value, None) or (None, what-is-wrong) for one setting's text."""
     if key == "name":
-        return text, None
+        # outputs are written as OUTDIR/NAME.*: a name must not reach outside OUTDIR
+        if re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.\-]*", text):
+            return text, None
+        return None, "must be a plain file name (letters, digits, `_`, `-`, `.`)"
     if key == "emphasis":
         if text in EMPHASIS_VALUES:
             return text, None
@@ -325,6 +328,8 @@ def _setting_value(key: str, text: str) -> tuple[Any, str | None]:
         if not re.fullmatch(r"\+?\d+", text):
             return None, "must be a whole number"
         value = int(text)
+        if key == "seed" and value > 2**31 - 1:
+            return None, "must be at most 2147483647 (SCIP's largest seed)"
         if key == "node_limit" and value < 1:
             return None, "must be at least 1 (or `none`)"
         return value, None
