@@ -1,0 +1,658 @@
+"""First feasible layout, built fast and without relying on SCIP's luck (issue 6).
+
+The thesis' model (seed §5.5.1) is hard for SCIP because of its four non-overlap binaries
+per room pair: from ~25 rooms up SCIP finds no feasible layout at all, while from a feasible
+start it polishes well. So we construct the start ourselves:
+
+1. A *seed geometry*: one rectangle per room, allowed to overlap. For an imported spec it
+   is the original plan (the `hints`); otherwise a placement grown from the room graph
+   (`construct_geometry`), randomised for variants.
+2. From the geometry, each pair of rooms gets its *relation*: which axis separates them
+   and in which order. The order always follows the geometry's centre order, so the
+   "left of" and "below" relations of all pairs are acyclic whatever axes are chosen.
+   Pairs far apart in the geometry get their relation fixed; only pairs that are close
+   keep a single binary (separated along x or along y). Orientation is fixed as well.
+3. That small MIP (mostly an LP) goes to SCIP with a short limit, its objective the
+   linear size deviation from the targets. If it fails, the free neighbourhood widens
+   (more pairs get their binary, then all four directions).
+4. The rectangles are checked against every hard constraint of the spec before they are
+   returned; a start that would fail verification is never handed on.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import random
+import sys
+import time
+from dataclasses import dataclass
+
+from layoutdsl.ast import Room, Spec
+
+Rect = tuple[float, float, float, float]
+"""(x, y, w, h): bottom-left corner and size, metres, boundary frame."""
+
+def _debug(message: str) -> None:
+    if os.environ.get("LAYOUTDSL_DEBUG_CONSTRUCT"):
+        print(message, file=sys.stderr, flush=True)
+
+
+SAFETY = 1e-6
+"""Metres added to every strict inequality so SCIP's feasibility tolerance cannot make the
+verifier (tolerance ~1e-6) see a violation."""
+
+
+@dataclass(frozen=True, slots=True)
+class RoomSizes:
+    """A room's size bounds in orientation-free form, as (5.4)-(5.6) read them."""
+
+    lo_long: float
+    hi_long: float
+    lo_short: float
+    hi_short: float
+    min_ar: float
+    max_ar: float
+    corridor: bool
+    target_long: float
+    target_short: float
+
+    @staticmethod
+    def of(room: Room) -> RoomSizes:
+        """Bounds of the long and the short side, whichever axis the room lies along."""
+        return RoomSizes(
+            lo_long=max(room.min_w, room.min_h),
+            hi_long=max(room.max_w, room.max_h),
+            lo_short=min(room.min_w, room.min_h),
+            hi_short=min(room.max_w, room.max_h),
+            min_ar=room.min_ar,
+            max_ar=room.max_ar,
+            corridor=room.is_corridor,
+            target_long=max(room.target_w, room.target_h),
+            target_short=min(room.target_w, room.target_h),
+        )
+
+    def bounds(self, long_along_x: bool) -> tuple[float, float, float, float]:
+        """(w_lo, w_hi, h_lo, h_hi) for the given orientation."""
+        if long_along_x:
+            return self.lo_long, self.hi_long, self.lo_short, self.hi_short
+        return self.lo_short, self.hi_short, self.lo_long, self.hi_long
+
+    def targets(self, long_along_x: bool) -> tuple[float, float]:
+        """(target w, target h) for the given orientation."""
+        if long_along_x:
+            return self.target_long, self.target_short
+        return self.target_short, self.target_long
+
+
+# ---------------------------------------------------------------------------------------
+# Relations between pairs, read off a seed geometry
+# ---------------------------------------------------------------------------------------
+
+DIRECTIONS = ("R", "L", "U", "D")
+"""Where the second thing of a pair lies relative to the first: right, left, up, down."""
+
+Pair = tuple[str, str]
+"""(room, room) or (room, obstacle), rooms in spec order."""
+
+
+def _centre(rect: Rect) -> tuple[float, float]:
+    x, y, w, h = rect
+    return (x + w / 2, y + h / 2)
+
+
+def _separations(a: Rect, b: Rect) -> tuple[float, float]:
+    """Gap between two rectangles along x and along y (negative: they overlap that much)."""
+    ax, ay, aw, ah = a
+    bx, by, bw, bh = b
+    return (max(bx - ax - aw, ax - bx - bw), max(by - ay - ah, ay - by - bh))
+
+
+def _ordered_directions(a: Rect, b: Rect, index_a: int, index_b: int) -> tuple[str, str]:
+    """The x-direction and the y-direction of b relative to a that follow the centre order.
+
+    Ties are broken by the pair's indices, so the induced orders are strict and total:
+    whatever axis each pair uses, no chain of "left of" or "below" constraints can close
+    into a cycle, which keeps the relation system satisfiable in a large enough boundary.
+    """
+    (acx, acy), (bcx, bcy) = _centre(a), _centre(b)
+    right = (bcx, index_b) > (acx, index_a)
+    up = (bcy, index_b) > (acy, index_a)
+    return ("R" if right else "L", "U" if up else "D")
+
+
+@dataclass(frozen=True, slots=True)
+class _Problem:
+    """What the relation models of one spec share, computed once."""
+
+    spec: Spec
+    width: float
+    height: float
+    walldim: float
+    walls: dict[frozenset[str], float]
+    """Adjacent room pair -> shared wall length it needs."""
+    obstacles: dict[str, Rect]
+    pairs: tuple[Pair, ...]
+    order: dict[str, int]
+    big_m: float
+
+    @staticmethod
+    def of(spec: Spec) -> _Problem:
+        """Precompute the pairs and constants of the spec."""
+        boundary = spec.boundary
+        assert boundary is not None
+        settings = spec.settings
+        walls = {
+            frozenset((adj.a, adj.b)): adj.door / settings.door_utilization + SAFETY
+            for adj in spec.adjacencies
+        }
+        obstacles = {ob.id: (ob.x, ob.y, ob.w, ob.h) for ob in boundary.obstacles}
+        ids = [room.id for room in spec.rooms]
+        order = {room_id: index for index, room_id in enumerate(ids)}
+        for index, ob_id in enumerate(obstacles):
+            order[ob_id] = len(ids) + index
+        pairs = [(a, b) for i, a in enumerate(ids) for b in ids[i + 1:]]
+        pairs += [(a, ob_id) for a in ids for ob_id in obstacles]
+        longest_wall = max(walls.values(), default=0.0)
+        return _Problem(
+            spec=spec,
+            width=boundary.w,
+            height=boundary.h,
+            walldim=settings.walldim,
+            walls=walls,
+            obstacles=obstacles,
+            pairs=tuple(pairs),
+            order=order,
+            big_m=max(boundary.w, boundary.h) + settings.walldim + longest_wall + 1.0,
+        )
+
+    def rect(self, geometry: dict[str, Rect], thing: str) -> Rect:
+        return self.obstacles[thing] if thing in self.obstacles else geometry[thing]
+
+    def axis_choices(self, geometry: dict[str, Rect], pair: Pair) -> tuple[str, str]:
+        """The pair's two centre-ordered directions, the geometry's clearer one first."""
+        a, b = pair
+        ra, rb = self.rect(geometry, a), self.rect(geometry, b)
+        sep_x, sep_y = _separations(ra, rb)
+        dir_x, dir_y = _ordered_directions(ra, rb, self.order[a], self.order[b])
+        return (dir_x, dir_y) if sep_x >= sep_y else (dir_y, dir_x)
+
+    def distance(self, geometry: dict[str, Rect], pair: Pair) -> float:
+        a, b = pair
+        return max(_separations(self.rect(geometry, a), self.rect(geometry, b)))
+
+
+# ---------------------------------------------------------------------------------------
+# The relation model, solved with SCIP
+# ---------------------------------------------------------------------------------------
+
+
+class _Box:
+    """A rectangle of the model: SCIP variables for a room, constants for an obstacle."""
+
+    __slots__ = ("x", "y", "w", "h")
+
+    def __init__(self, x, y, w, h):
+        self.x, self.y, self.w, self.h = x, y, w, h
+
+
+def _add_direction(model, a: _Box, b: _Box, direction: str, gap: float, slack) -> None:
+    """b lies in `direction` of a with at least `gap` between them, up to `slack`."""
+    if direction == "R":
+        model.addCons(a.x + a.w + gap - b.x <= slack)
+    elif direction == "L":
+        model.addCons(b.x + b.w + gap - a.x <= slack)
+    elif direction == "U":
+        model.addCons(a.y + a.h + gap - b.y <= slack)
+    else:
+        model.addCons(b.y + b.h + gap - a.y <= slack)
+
+
+def _add_adjacent(model, a: _Box, b: _Box, direction: str, walldim: float, wall: float,
+                  slack) -> None:
+    """b touches a on the `direction` side: exactly one wall between, `wall` m shared."""
+    if direction in ("R", "L"):
+        first, second = (a, b) if direction == "R" else (b, a)
+        model.addCons(first.x + first.w + walldim - second.x <= slack)
+        model.addCons(second.x - first.x - first.w - walldim <= slack)
+        model.addCons(a.y + wall - b.y - b.h <= slack)
+        model.addCons(b.y + wall - a.y - a.h <= slack)
+    else:
+        first, second = (a, b) if direction == "U" else (b, a)
+        model.addCons(first.y + first.h + walldim - second.y <= slack)
+        model.addCons(second.y - first.y - first.h - walldim <= slack)
+        model.addCons(a.x + wall - b.x - b.w <= slack)
+        model.addCons(b.x + wall - a.x - a.w <= slack)
+
+
+ADJACENCY_STRETCH_WEIGHT = 4.0
+"""Stretching an adjacency costs more than stretching a separation, so the repair model
+blames (and the next round frees) the separations that keep adjacent rooms apart."""
+
+
+@dataclass
+class _Outcome:
+    """A solved relation model: rectangles, the direction each pair took, what it stretched."""
+
+    rects: dict[str, Rect]
+    chosen: dict[Pair, str]
+    stretched: dict[Pair, float]
+    values: dict[str, float]
+    """Every variable's value by name, to warm-start the next, wider model."""
+
+
+def _solve_model(
+    problem: _Problem,
+    geometry: dict[str, Rect],
+    options: dict[Pair, tuple[str, ...]],
+    *,
+    elastic: bool,
+    seconds: float,
+    seed: int,
+    start: _Outcome | None = None,
+) -> _Outcome | None:
+    """Solve the rooms' LP/MIP under the allowed pair directions; None without a solution.
+
+    Elastic: each pair's constraints may be stretched at a cost; the objective is the total
+    stretch and SCIP stops as soon as it reaches zero. Otherwise the relations are hard and
+    the objective is the linear deviation of the sizes from their targets.
+    """
+    from pyscipopt import Model, quicksum
+
+    spec = problem.spec
+    settings = spec.settings
+    width, height, big_m = problem.width, problem.height, problem.big_m
+
+    model = Model("construct")
+    model.hideOutput()
+    model.setParam("display/verblevel", 0)
+    model.setParam("limits/time", max(0.05, seconds))
+    model.setParam("randomization/randomseedshift", seed % 2**31)
+    model.setParam("numerics/feastol", 1e-9)
+    if elastic is True:
+        model.setParam("limits/primal", 1e-7)
+    else:
+        model.setParam("limits/gap", 1e-4)
+
+    boxes: dict[str, _Box] = {}
+    deviation = []
+    for room in spec.rooms:
+        sizes = RoomSizes.of(room)
+        gx, gy, gw, gh = geometry[room.id]
+        long_x = gw >= gh
+        w_lo, w_hi, h_lo, h_hi = sizes.bounds(long_x)
+        w_lo, h_lo = w_lo + SAFETY, h_lo + SAFETY
+        w_hi, h_hi = max(w_lo, w_hi - SAFETY), max(h_lo, h_hi - SAFETY)
+        x = model.addVar(f"x_{room.id}", lb=0.0, ub=width)
+        y = model.addVar(f"y_{room.id}", lb=0.0, ub=height)
+        w = model.addVar(f"w_{room.id}", lb=w_lo, ub=w_hi)
+        h = model.addVar(f"h_{room.id}", lb=h_lo, ub=h_hi)
+        model.addCons(x + w <= width - SAFETY)
+        model.addCons(y + h <= height - SAFETY)
+        if not sizes.corridor:
+            long_side, short_side = (w, h) if long_x else (h, w)
+            model.addCons(sizes.min_ar * short_side + SAFETY <= long_side)
+            model.addCons(long_side <= sizes.max_ar * short_side - SAFETY)
+        boxes[room.id] = _Box(x, y, w, h)
+        if elastic != True:  # noqa: E712 - "final" also wants the deviation
+            for var, target in zip((w, h), sizes.targets(long_x)):
+                dev = model.addVar(f"d_{var.name}", lb=0.0)
+                model.addCons(dev >= var - target)
+                model.addCons(dev >= target - var)
+                deviation.append(room.rho_error * dev)
+    for ob_id, (ox, oy, ow, oh) in problem.obstacles.items():
+        boxes[ob_id] = _Box(ox, oy, ow, oh)
+
+    for room in spec.rooms:
+        if not room.on_boundary:
+            continue
+        box = boxes[room.id]
+        sides = [model.addVar(f"onb_{room.id}_{side}", vtype="B") for side in "lrdu"]
+        model.addCons(box.x <= big_m * (1 - sides[0]))
+        model.addCons(box.x + box.w >= width - SAFETY - big_m * (1 - sides[1]))
+        model.addCons(box.y <= big_m * (1 - sides[2]))
+        model.addCons(box.y + box.h >= height - SAFETY - big_m * (1 - sides[3]))
+        model.addCons(quicksum(sides) >= 1)
+
+    points = [(p.room, p.x, p.y) for p in spec.positions]
+    for c in spec.connections:
+        points += [(c.room, c.x1, c.y1), (c.room, c.x2, c.y2)]
+    for room_id, px, py in points:
+        box = boxes[room_id]
+        model.addCons(box.x <= px - SAFETY)
+        model.addCons(box.x + box.w >= px + SAFETY)
+        model.addCons(box.y <= py - SAFETY)
+        model.addCons(box.y + box.h >= py + SAFETY)
+    margin = settings.cluster_margin
+    reach = 2 * max(width, height) + 10.0
+    for cluster in spec.clusters:
+        cx = model.addVar(f"cx_{cluster.id}", lb=-reach, ub=reach)
+        cy = model.addVar(f"cy_{cluster.id}", lb=-reach, ub=reach)
+        for member in cluster.members:
+            box = boxes[member.room]
+            model.addCons(box.x - margin + SAFETY <= member.x + cx)
+            model.addCons(box.x + box.w + margin - SAFETY >= member.x + cx)
+            model.addCons(box.y - margin + SAFETY <= member.y + cy)
+            model.addCons(box.y + box.h + margin - SAFETY >= member.y + cy)
+
+    gap = problem.walldim + SAFETY
+    binaries: dict[Pair, list] = {}
+    stretches: dict[Pair, object] = {}
+    penalty = []
+    for pair, allowed in options.items():
+        a, b = pair
+        wall = problem.walls.get(frozenset(pair))
+        stretch = 0.0
+        if elastic:
+            stretch = model.addVar(f"s_{a}_{b}", lb=0.0)
+            stretches[pair] = stretch
+            penalty.append((ADJACENCY_STRETCH_WEIGHT if wall else 1.0) * stretch)
+        if len(allowed) == 1:
+            switches = [None]
+        else:
+            switches = [model.addVar(f"z_{a}_{b}_{d}", vtype="B") for d in allowed]
+            binaries[pair] = switches
+            model.addCons(quicksum(switches) >= 1)
+        for direction, on in zip(allowed, switches):
+            slack = stretch if on is None else stretch + big_m * (1 - on)
+            if wall is None:
+                _add_direction(model, boxes[a], boxes[b], direction, gap, slack)
+            else:
+                _add_adjacent(model, boxes[a], boxes[b], direction, problem.walldim, wall, slack)
+
+    if elastic == "final":
+        model.setObjective(quicksum(deviation) + 1e4 * quicksum(penalty), "minimize")
+    else:
+        model.setObjective(quicksum(penalty) if elastic else quicksum(deviation), "minimize")
+    if start is not None:
+        _add_start(model, start, options)
+    model.optimize()
+    status = model.getStatus()
+    _debug(f"    {'repair' if elastic else 'final'} model: {status} in "
+           f"{model.getSolvingTime():.2f}s, {len(binaries)} free pairs, {model.getNSols()} sols")
+    if model.getNSols() == 0:
+        return None
+    solution = model.getBestSol()
+    chosen: dict[Pair, str] = {}
+    for pair, allowed in options.items():
+        switches = binaries.get(pair)
+        if switches is None:
+            chosen[pair] = allowed[0]
+        else:
+            values = [solution[on] for on in switches]
+            chosen[pair] = allowed[max(range(len(allowed)), key=lambda i: values[i])]
+    stretched = {pair: solution[var] for pair, var in stretches.items() if solution[var] > 1e-6}
+    _debug(f"    max stretch {max((solution[v] for v in stretches.values()), default=0):.3g}")
+    rects = {
+        room.id: (solution[boxes[room.id].x], solution[boxes[room.id].y],
+                  solution[boxes[room.id].w], solution[boxes[room.id].h])
+        for room in spec.rooms
+    }
+    values = {var.name: solution[var] for var in model.getVars()}
+    return _Outcome(rects, chosen, stretched, values)
+
+
+def _add_start(model, start: _Outcome, options: dict[Pair, tuple[str, ...]]) -> None:
+    """Offer the previous round's solution to SCIP: it stays feasible in a wider model."""
+    solution = model.createSol()
+    by_name = {var.name: var for var in model.getVars()}
+    for var in by_name.values():
+        name = var.name
+        if name.startswith("z_"):
+            continue
+        if name in start.values:
+            model.setSolVal(solution, var, start.values[name])
+    for pair, allowed in options.items():
+        if len(allowed) == 1:
+            continue
+        picked = start.chosen.get(pair, allowed[0])
+        for direction in allowed:
+            var_name = f"z_{pair[0]}_{pair[1]}_{direction}"
+            model.setSolVal(solution, by_name[var_name], float(direction == picked))
+    model.addSol(solution, free=True)
+# ---------------------------------------------------------------------------------------
+# Checking rectangles against the spec's hard constraints
+# ---------------------------------------------------------------------------------------
+
+TOLERANCE = 1e-6
+
+
+def hard_violations(spec: Spec, rects: dict[str, Rect]) -> list[str]:
+    """Every hard constraint of the spec the rectangles break, in words (empty: feasible).
+
+    Mirrors the verifier's rules so construction can judge its own candidates cheaply;
+    `check_start` additionally runs the project's verifier when it is available.
+    """
+    tol = TOLERANCE
+    problems: list[str] = []
+    boundary = spec.boundary
+    assert boundary is not None
+    walldim = spec.settings.walldim
+    for room in spec.rooms:
+        if room.id not in rects:
+            problems.append(f"{room.id}: not placed")
+            continue
+        x, y, w, h = rects[room.id]
+        if x < -tol or y < -tol or x + w > boundary.w + tol or y + h > boundary.h + tol:
+            problems.append(f"{room.id}: outside the boundary")
+        sizes = RoomSizes.of(room)
+        w_lo, w_hi, h_lo, h_hi = sizes.bounds(w >= h)
+        if not (w_lo - tol <= w <= w_hi + tol and h_lo - tol <= h <= h_hi + tol):
+            problems.append(f"{room.id}: size {w:.3f} x {h:.3f} out of bounds")
+        if not room.is_corridor:
+            ratio = max(w, h) / min(w, h)
+            if not room.min_ar - tol <= ratio <= room.max_ar + tol:
+                problems.append(f"{room.id}: aspect ratio {ratio:.3f} out of bounds")
+        if room.on_boundary and not (
+            x <= tol or y <= tol or x + w >= boundary.w - tol or y + h >= boundary.h - tol
+        ):
+            problems.append(f"{room.id}: not on the boundary")
+    if problems:
+        return problems
+    things = [(room.id, rects[room.id]) for room in spec.rooms] + [
+        (ob.id, (ob.x, ob.y, ob.w, ob.h)) for ob in boundary.obstacles
+    ]
+    for i, (a, ra) in enumerate(things):
+        for b, rb in things[i + 1:]:
+            sep_x, sep_y = _separations(ra, rb)
+            if max(sep_x, sep_y) < walldim - tol:
+                problems.append(f"{a} and {b} overlap or lack a wall between them")
+    door_factor = spec.settings.door_utilization
+    for adj in spec.adjacencies:
+        sep_x, sep_y = _separations(rects[adj.a], rects[adj.b])
+        need = adj.door / door_factor - tol
+        touching = (abs(sep_x - walldim) <= tol and -sep_y >= need) or (
+            abs(sep_y - walldim) <= tol and -sep_x >= need
+        )
+        if not touching:
+            problems.append(f"{adj.a} and {adj.b} share no wall of {adj.door:.2f} m")
+    for position in spec.positions:
+        if not _covers(rects[position.room], position.x, position.y):
+            problems.append(f"{position.room}: does not cover its position")
+    for connection in spec.connections:
+        rect = rects[connection.room]
+        if not (_covers(rect, connection.x1, connection.y1)
+                and _covers(rect, connection.x2, connection.y2)):
+            problems.append(f"{connection.room}: does not cover its connection")
+    margin = spec.settings.cluster_margin
+    for cluster in spec.clusters:
+        lo_x = lo_y = -math.inf
+        hi_x = hi_y = math.inf
+        for member in cluster.members:
+            x, y, w, h = rects[member.room]
+            lo_x, hi_x = max(lo_x, x - margin - member.x), min(hi_x, x + w + margin - member.x)
+            lo_y, hi_y = max(lo_y, y - margin - member.y), min(hi_y, y + h + margin - member.y)
+        if lo_x > hi_x + tol or lo_y > hi_y + tol:
+            problems.append(f"cluster {cluster.id}: members moved apart beyond the margin")
+    return problems
+
+
+def _covers(rect: Rect, px: float, py: float) -> bool:
+    x, y, w, h = rect
+    return x - TOLERANCE <= px <= x + w + TOLERANCE and y - TOLERANCE <= py <= y + h + TOLERANCE
+
+
+def rects_to_layout(spec: Spec, rects: dict[str, Rect]):
+    """A Layout (with portals) of the rectangles, for the verifier and the emitters."""
+    from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, make_portal
+
+    assert spec.boundary is not None
+    placed = {
+        room.id: PlacedRoom(room.id, room.label, room.rtype, *rects[room.id])
+        for room in spec.rooms
+    }
+    portals = tuple(
+        make_portal(placed[adj.a], placed[adj.b], adj.kind, adj.door) for adj in spec.adjacencies
+    )
+    obstacles = tuple(
+        PlacedObstacle(ob.id, ob.x, ob.y, ob.w, ob.h) for ob in spec.boundary.obstacles
+    )
+    return Layout(
+        name=spec.name,
+        width=spec.boundary.w,
+        height=spec.boundary.h,
+        walldim=spec.settings.walldim,
+        rooms=tuple(placed[room.id] for room in spec.rooms),
+        portals=portals,
+        obstacles=obstacles,
+    )
+
+
+def check_start(spec: Spec, rects: dict[str, Rect]) -> list[str]:
+    """Violations of the rectangles: our own check, then the project's verifier if present."""
+    problems = hard_violations(spec, rects)
+    if problems:
+        return problems
+    try:
+        from layoutdsl.verify import verify
+    except ImportError:  # the verifier lands in parallel; our own check stands in meanwhile
+        return []
+    try:
+        layout = rects_to_layout(spec, rects)
+    except ValueError as error:
+        return [str(error)]
+    return [str(violation) for violation in verify(spec, layout)]
+
+
+# ---------------------------------------------------------------------------------------
+# Seed geometries
+# ---------------------------------------------------------------------------------------
+
+
+def hint_geometry(spec: Spec) -> dict[str, Rect] | None:
+    """The hints, each shrunk to its room's target size around the hint's centre.
+
+    An imported room's hint is its original bounding box; the target is that box scaled by
+    sqrt(polygon / box area), so the shrunk rectangle is where the room "really" is and
+    L-shaped rooms overlap their neighbours less. None unless every room has a hint.
+    """
+    hints = {hint.room: hint for hint in spec.hints}
+    if any(room.id not in hints for room in spec.rooms):
+        return None
+    geometry: dict[str, Rect] = {}
+    for room in spec.rooms:
+        hint = hints[room.id]
+        sizes = RoomSizes.of(room)
+        w, h = sizes.targets(hint.w >= hint.h)
+        cx, cy = hint.x + hint.w / 2, hint.y + hint.h / 2
+        geometry[room.id] = (cx - w / 2, cy - h / 2, w, h)
+    return geometry
+
+
+DEFAULT_SECONDS = 60.0
+
+FREE_RADII = (1.0, 3.0, 6.0, 12.0, 25.0)
+"""Metres around a conflict within which pairs get their relation freed, round by round."""
+
+
+def _repair(
+    problem: _Problem,
+    geometry: dict[str, Rect],
+    deadline: float,
+    seed: int,
+) -> dict[str, Rect] | None:
+    """Relations from the geometry, repaired round by round until they admit a layout.
+
+    Each round solves the elastic model; the pairs it had to stretch, and the pairs close to
+    their rooms, get more freedom (one axis -> either axis -> any direction) for the next
+    round, which starts from the previous solution. Zero stretch ends the repair; a final
+    LP with those relations then brings the sizes towards their targets.
+    """
+    options: dict[Pair, tuple[str, ...]] = {
+        pair: problem.axis_choices(geometry, pair)[:1] for pair in problem.pairs
+    }
+    start: _Outcome | None = None
+    for round_index in range(len(FREE_RADII) * 3):
+        left = deadline - time.monotonic()
+        if left <= 0.05:
+            return None
+        outcome = _solve_model(problem, geometry, options, elastic=True,
+                               seconds=min(left, 1.0 + 0.25 * left), seed=seed, start=start)
+        if outcome is None:
+            return None
+        if not outcome.stretched:
+            final_options = {pair: (direction,) for pair, direction in outcome.chosen.items()}
+            final = _solve_model(problem, geometry, final_options, elastic="final",
+                                 seconds=max(0.5, min(5.0, deadline - time.monotonic())),
+                                 seed=seed)
+            for rects in (final.rects if final else None, outcome.rects):
+                if rects is None:
+                    continue
+                problems = check_start(problem.spec, rects)
+                if not problems:
+                    return rects
+                _debug(f"    rejected: {problems[:3]}")
+            return None
+        _debug(f"  round {round_index}: {len(outcome.stretched)} stretched, "
+               f"total {sum(outcome.stretched.values()):.2f} m")
+        radius = FREE_RADII[min(round_index, len(FREE_RADII) - 1)]
+        blamed = {thing for pair in outcome.stretched for thing in pair}
+        for pair in outcome.stretched:
+            options[pair] = _widen(problem, geometry, pair, options[pair])
+        for pair in problem.pairs:
+            if len(options[pair]) == 1 and (pair[0] in blamed or pair[1] in blamed) and (
+                problem.distance(geometry, pair) <= radius
+            ):
+                options[pair] = _widen(problem, geometry, pair, options[pair])
+        start = outcome
+    return None
+
+
+def _widen(problem: _Problem, geometry: dict[str, Rect], pair: Pair,
+           allowed: tuple[str, ...]) -> tuple[str, ...]:
+    """One more degree of freedom: one direction -> both axes -> all four directions."""
+    if len(allowed) == 1:
+        both = problem.axis_choices(geometry, pair)
+        return (allowed[0],) + tuple(d for d in both if d != allowed[0])
+    if len(allowed) == 2:
+        return allowed + tuple(d for d in DIRECTIONS if d not in allowed)
+    return allowed
+
+
+def construct_start(
+    spec: Spec,
+    *,
+    seed: int = 0,
+    deadline: float | None = None,
+    randomize: bool = False,
+) -> dict[str, Rect] | None:
+    """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
+
+    `deadline` is a `time.monotonic()` instant (default: 60 s from now); `randomize` draws a
+    seed geometry from the room graph for this seed (variants) instead of using the hints.
+    """
+    if spec.boundary is None or not spec.rooms:
+        return None
+    if deadline is None:
+        deadline = time.monotonic() + DEFAULT_SECONDS
+    problem = _Problem.of(spec)
+    rng = random.Random(seed)
+    geometry = None if randomize else hint_geometry(spec)
+    if geometry is None:
+        geometry = construct_geometry(spec, rng)
+    return _repair(problem, geometry, deadline, seed)
+
+
+def construct_geometry(spec: Spec, rng: random.Random) -> dict[str, Rect]:
+    """A seed geometry grown from the room graph (no hints needed)."""
+    raise NotImplementedError
