@@ -192,10 +192,11 @@ def build_model(
     bounds = room_bounds(spec)
     rooms = {room.id: room for room in spec.rooms}
     obstacles = {ob.id: ob for ob in spec.boundary.obstacles}
-    order = {room.id: index for index, room in enumerate(spec.rooms)}
     max_ar = max([r.max_ar for r in spec.rooms if not r.is_corridor] + [1.0])
-    # the thesis' single M, valid for every big-M constraint below
-    global_m = max(width, height) * max_ar + wall
+    max_need = max([a.door / spec.settings.door_utilization for a in spec.adjacencies] + [0.0])
+    # the thesis' single M: at least every per-constraint value below (aspect ratio needs
+    # maxAR times a side, adjacency a side plus the shared wall, non-overlap a side plus a wall)
+    global_m = max(width, height) * max(max_ar, 1.0) + max(width, height) + wall + max_need
 
     def big_m(value: float) -> float:
         return max(value, 0.0) if formulation.tight_big_m else global_m

@@ -208,3 +208,25 @@ def test_polish_finds_the_best_geometry_for_the_starts_relations():
         assert holds[side], (a, b, side)
     assert {r: model.o[r].value for r in model.rooms} == orientations
     assert not any(v.fixed for v in model.eq5_8_non_overlap.side.values())
+
+
+def test_a_39_room_compile_keeps_its_time_limit():
+    import time
+
+    from ._planted import planted
+
+    big, _ = planted(6, 3)
+    began = time.monotonic()
+    result = compile_spec(big, SolveOptions(time_limit=2, quiet=True, strategy="thesis"))
+    assert time.monotonic() - began < 2 + 3.0
+    assert result.layout is not None or result.status == "no_layout"
+
+
+def test_a_39_room_planted_start_is_polished_and_verified():
+    from ._planted import planted
+
+    big, rects = planted(6, 3)
+    result = compile_spec(big, SolveOptions(time_limit=3, quiet=True), start=rects)
+    assert result.layout is not None, result.diagnostics
+    assert verify(big, result.layout) == []
+    assert result.layout.solve.objective < objective_of_rects(big, rects)
