@@ -117,3 +117,27 @@ def test_every_syntax_error_is_reported_not_only_the_first() -> None:
     spec, diagnostics = parse_source(Source("x.lay", text))
     assert spec is None
     assert [(d.code, d.span.line) for d in diagnostics] == [("E003", 2), ("E005", 3), ("E003", 7)]
+
+
+def test_grammar_is_found_inside_an_installed_package(tmp_path) -> None:
+    """A wheel has the grammar at layoutdsl/grammar/ (pyproject force-include), no top-level copy."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    package = tmp_path / "site" / "layoutdsl"
+    shutil.copytree(root / "layoutdsl", package, ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copytree(root / "grammar", package / "grammar")
+    code = (
+        "import layoutdsl.parser as p, sys; from layoutdsl.source import Source; "
+        "spec, d = p.parse_source(Source('x.lay', 'rooms\\nR0 4 6 5 3 5 4 1 2 R A\\n\\nboundary\\n12 14\\n')); "
+        "print(p._grammar_path()); sys.exit(0 if spec and not d else 1)"
+    )
+    result = subprocess.run(
+        [sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True,
+        env={"PYTHONPATH": str(tmp_path / "site")},
+    )  # fmt: skip
+    assert result.returncode == 0, result.stderr
+    assert result.stdout.strip() == str(package / "grammar" / "layout.lark")
