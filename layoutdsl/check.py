@@ -14,8 +14,6 @@ import difflib
 import math
 from collections.abc import Iterable, Iterator
 
-import networkx as nx
-
 from layoutdsl.ast import Adjacency, Room, Spec
 from layoutdsl.diagnostics import Diagnostic, Severity, register
 from layoutdsl.format import format_number as _n
@@ -674,45 +672,58 @@ def check_shared_points(spec: Spec) -> Iterator[Diagnostic]:
 # ===== Topology =====
 
 
-def _room_graph(spec: Spec) -> tuple[nx.Graph, dict[frozenset[str], Adjacency]]:
+Graph = dict[str, set[str]]
+"""Room id -> ids of the rooms it is adjacent to (undirected, no self loops)."""
+
+
+def _room_graph(spec: Spec) -> tuple[Graph, dict[frozenset[str], Adjacency]]:
     rooms = _rooms_by_id(spec)
-    graph = nx.Graph()
-    graph.add_nodes_from(rooms)
+    graph: Graph = {room_id: set() for room_id in rooms}
     edges: dict[frozenset[str], Adjacency] = {}
     for adjacency in spec.adjacencies:
         if adjacency.a in rooms and adjacency.b in rooms and adjacency.a != adjacency.b:
-            graph.add_edge(adjacency.a, adjacency.b)
+            graph[adjacency.a].add(adjacency.b)
+            graph[adjacency.b].add(adjacency.a)
             edges.setdefault(frozenset((adjacency.a, adjacency.b)), adjacency)
     return graph, edges
 
 
-def _planarity_core(graph: nx.Graph) -> nx.Graph:
+def _planarity_core(graph: Graph) -> Graph:
     """The graph with rooms of degree <= 1 removed and rooms of degree 2 smoothed away.
 
     Both steps keep (non-)planarity, and real plans are mostly trees around corridors, so
-    the core that networkx must test is usually tiny.
+    the core left for the planarity test is usually empty.
     """
-    core = graph.copy()
-    queue = [n for n in core if core.degree(n) <= 2]
+    core = {node: set(neighbours) for node, neighbours in graph.items()}
+    queue = [node for node, neighbours in core.items() if len(neighbours) <= 2]
     while queue:
         node = queue.pop()
-        if node not in core or core.degree(node) > 2:
+        if node not in core or len(core[node]) > 2:
             continue
-        neighbours = list(core.neighbors(node))
-        core.remove_node(node)
+        neighbours = core.pop(node)
+        for other in neighbours:
+            core[other].discard(node)
         if len(neighbours) == 2:
-            core.add_edge(*neighbours)  # a path through a degree-2 room acts as one edge
-        queue.extend(n for n in neighbours if core.degree(n) <= 2)
+            a, b = neighbours  # a path through a degree-2 room acts as one edge
+            core[a].add(b)
+            core[b].add(a)
+        queue.extend(n for n in neighbours if len(core[n]) <= 2)
     return core
+
+
+def _edge_count(graph: Graph) -> int:
+    return sum(len(neighbours) for neighbours in graph.values()) // 2
 
 
 def check_planarity(spec: Spec) -> Iterator[Diagnostic]:
     """E215: rooms that touch form a planar graph; name a Kuratowski subgraph if not."""
     graph, edges = _room_graph(spec)
     core = _planarity_core(graph)
-    if core.number_of_edges() <= 8:  # K5 has 10 edges and K3,3 has 9
+    if _edge_count(core) <= 8:  # K5 has 10 edges and K3,3 has 9
         return
-    planar, certificate = nx.check_planarity(core, counterexample=True)
+    import networkx as nx  # imported only for the rare non-trivial core: it is slow to load
+
+    planar, certificate = nx.check_planarity(nx.Graph([(a, b) for a in core for b in core[a]]), counterexample=True)
     if planar:
         return
     names = sorted(certificate.nodes)
@@ -733,9 +744,22 @@ def check_planarity(spec: Spec) -> Iterator[Diagnostic]:
 def check_components(spec: Spec) -> Iterator[Diagnostic]:
     """W301: every room is reachable from every other through adjacencies."""
     graph, _ = _room_graph(spec)
-    if graph.number_of_nodes() < 2:
+    if len(graph) < 2:
         return
-    components = list(nx.connected_components(graph))
+    components: list[set[str]] = []
+    unseen = set(graph)
+    for start in graph:  # depth-first search from each room not yet reached, in file order
+        if start not in unseen:
+            continue
+        component, stack = {start}, [start]
+        unseen.discard(start)
+        while stack:
+            for other in graph[stack.pop()]:
+                if other in unseen:
+                    unseen.discard(other)
+                    component.add(other)
+                    stack.append(other)
+        components.append(component)
     if len(components) < 2:
         return
     rooms = _rooms_by_id(spec)
