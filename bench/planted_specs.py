@@ -122,6 +122,7 @@ FIG42_ADJ = "R0-C3 R1-C3 R2-C3 R3-C3 R4-C2 R5-C2 R6-C2 C0-C2 C1-C2 R7-C2 C2-C3:i
 
 
 def school_fig42() -> tuple[Spec, Layout, str]:
+    """The Figure 4.2 school with our placement. Returns (spec, planted layout, header comment)."""
     rooms = []
     for line in FIG42_ROOMS.splitlines():
         parts = line.split()
@@ -161,6 +162,7 @@ OFFICE_ADJ = "R0-C0 R1-C0 R2-C0 R3-C0 R4-C0 R5-C0 R6-C0 R7-C0 E0-C0:i"
 
 
 def office_small() -> tuple[Spec, Layout, str]:
+    """Ten rooms on one corridor. Returns (spec, planted layout, header comment)."""
     rooms = tuple(_derived_room(p[0], p[1], p[2], p[5], p[6], *p[7:]) for p in OFFICE_PLACED)
     spec = Spec("office_small", rooms, Boundary(22.0, 14.0), _adj(OFFICE_ADJ))
     header = (
@@ -194,6 +196,7 @@ CYCLE_ADJ = "C0-C1:i C1-C2:i C2-C3:i C3-C0:i R0-C0 R1-C1 R3-C2 R2-C3 E0-C0:i R4-
 
 
 def school_cycle() -> tuple[Spec, Layout, str]:
+    """Four corridors in a ring around four classrooms. Returns (spec, planted layout, header comment)."""
     rooms = tuple(_derived_room(p[0], p[1], p[2], p[5], p[6], *p[7:]) for p in CYCLE_PLACED)
     spec = Spec("school_cycle", rooms, Boundary(24.5, 25.5), _adj(CYCLE_ADJ))
     header = (
@@ -222,6 +225,7 @@ CAMPUS_ADJ = "E0-C0:i R0-C0 R1-C0 R2-C0 R3-C0 R4-C0 R5-C0 E1-C0:i R1-R2"
 
 
 def campus_constraints() -> tuple[Spec, Layout, str]:
+    """Every optional constraint on one small block. Returns (spec, planted layout, header comment)."""
     rooms = tuple(_derived_room(p[0], p[1], p[2], p[5], p[6], *p[7:]) for p in CAMPUS_PLACED)
     spec = Spec(
         "campus_constraints", rooms, Boundary(24.0, 17.0, CAMPUS_OBSTACLES), _adj(CAMPUS_ADJ),
