@@ -240,6 +240,15 @@ W_HINT_OUTSIDE = register(
     "boundary\n20 50\n\nhints\nR0 18 0 5 5",
 )  # fmt: skip
 
+W_TARGETS_TOO_BIG = register(
+    "W304", Severity.WARNING, "target sizes exceed the free boundary area",
+    "Reports a spec whose rooms' target areas add up to more than the boundary's area minus "
+    "its obstacles (while their minimum areas still fit).",
+    "No layout can reach the targets: every room comes out smaller than asked, and the "
+    "solver spends its time trading one room's error against another's.",
+    "boundary\n10 10     # but the target rooms cover 120 m²",
+)  # fmt: skip
+
 _FALLBACK_SPAN = Span(1, 1, 1, 2)
 
 
@@ -518,7 +527,7 @@ def _boundary_ok(spec: Spec) -> bool:
 
 
 def check_fit(spec: Spec) -> Iterator[Diagnostic]:
-    """E206, E207: each room, and all rooms together, fit in the boundary."""
+    """E206, E207, W304: each room, and all rooms together, fit in the boundary."""
     if not _boundary_ok(spec):
         return
     bw, bh = spec.boundary.w, spec.boundary.h
@@ -537,6 +546,13 @@ def check_fit(spec: Spec) -> Iterator[Diagnostic]:
                         _span(room, "id"), "too big for the boundary",
                         "lower the room's minimum sizes or enlarge the boundary")  # fmt: skip
     free = bw * bh - _obstacle_area_inside(spec)
+    targets = sum(room.target_w * room.target_h for room in spec.rooms)
+    if counted and total <= free * (1 + 1e-9) and targets > free * (1 + 1e-9):
+        yield _diag(spec, W_TARGETS_TOO_BIG,
+                    f"the rooms' target sizes cover {targets:.2f} m² but the free boundary area is only {free:.2f} m²",
+                    _span(spec.boundary), "smaller than the target rooms",
+                    "enlarge the boundary (imported plans use about 1.3-1.6 times the target area) "
+                    "or lower the targets", warning=True)  # fmt: skip
     if counted and total > free * (1 + 1e-9):
         label = "boundary" if not spec.boundary.obstacles else "boundary minus obstacles"
         yield _diag(spec, E_AREA_TOO_BIG,
