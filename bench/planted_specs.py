@@ -30,6 +30,7 @@ from layoutdsl.ast import (
     Settings,
     Spec,
 )
+from layoutdsl.atomic import write_text_atomic
 from layoutdsl.check import check_spec
 from layoutdsl.format import format_spec
 from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, make_portal
@@ -279,7 +280,7 @@ def main(argv: list[str] | None = None) -> int:
             print("   ", getattr(item, "code", getattr(item, "rule", "")), item.message)
         failed |= bool(problems or violations)
         if args.write and not problems and not violations:
-            (SPECS / f"{name}.lay").write_text(header + "\n" + format_spec(spec), encoding="utf-8")
+            write_text_atomic(SPECS / f"{name}.lay", header + "\n" + format_spec(spec))
     return 1 if failed else 0
 
 
