@@ -670,6 +670,7 @@ def construct_start(
     problem = _Problem.of(spec)
     rng = random.Random(seed)
     for index, geometry in enumerate(_seed_geometries(spec, rng, randomize)):
+        geometry = _cover_points(spec, geometry)
         left = deadline - time.monotonic()
         if left <= 0.05:
             return None
@@ -693,6 +694,25 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool):
         yield perturbed_hint_geometry(spec, rng)
     for _ in range(3):
         yield construct_geometry(spec, rng)
+
+
+def _cover_points(spec: Spec, geometry: dict[str, Rect]) -> dict[str, Rect]:
+    """Move each room with a position (or connection) so its seed rectangle covers the point.
+
+    The relations then already put the room where the hard constraint wants it, instead of
+    leaving the repair to discover that the whole neighbourhood must move.
+    """
+    points: dict[str, tuple[float, float]] = {p.room: (p.x, p.y) for p in spec.positions}
+    for c in spec.connections:
+        points.setdefault(c.room, ((c.x1 + c.x2) / 2, (c.y1 + c.y2) / 2))
+    if not points:
+        return geometry
+    moved = dict(geometry)
+    for room_id, (px, py) in points.items():
+        if room_id in moved:
+            x, y, w, h = moved[room_id]
+            moved[room_id] = (px - w / 2, py - h / 2, w, h)
+    return moved
 
 
 def perturbed_hint_geometry(spec: Spec, rng: random.Random) -> dict[str, Rect]:
