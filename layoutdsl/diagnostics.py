@@ -80,10 +80,5 @@ def load_all_codes() -> dict[str, CodeDoc]:
     import importlib
 
     for name in CODE_MODULES:
-        try:
-            importlib.import_module(name)
-        except ModuleNotFoundError as error:
-            # Tolerated only while a stage is still being written (removed at integration).
-            if error.name != name:
-                raise
+        importlib.import_module(name)
     return CODES

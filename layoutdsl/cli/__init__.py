@@ -12,17 +12,19 @@ import sys
 
 from layoutdsl import __version__, exitcodes
 
-# command name -> module under layoutdsl.cli, in the order --help lists them
+# command name -> (module under layoutdsl.cli, one-line help), in the order --help lists them.
+# The one-line help lives here so `layoutdsl --help` need not import every command.
 COMMANDS = {
-    "compile": "compile",
-    "lint": "lint",
-    "fmt": "fmt",
-    "import": "import_xml",
-    "evaluate": "evaluate",
+    "compile": ("compile", "solve a spec into a verified layout and write its files"),
+    "lint": ("lint", "report every problem in spec files"),
+    "fmt": ("fmt", "print or rewrite a spec in canonical form"),
+    "import": ("import_xml", "convert a building XML plan into a spec"),
+    "evaluate": ("evaluate", "compare generated plans with their original"),
 }
 
 
-def build_parser() -> argparse.ArgumentParser:
+def build_parser(command: str | None = None) -> argparse.ArgumentParser:
+    """The argument parser; only `command`'s module is imported (all of them when None)."""
     parser = argparse.ArgumentParser(
         prog="layoutdsl",
         description="Compile building-layout specs into verified floor plans for robot simulation.",
@@ -31,19 +33,20 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--version", action="version", version=f"layoutdsl {__version__}")
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for name, module_name in COMMANDS.items():
-        try:
+    for name, (module_name, summary) in COMMANDS.items():
+        if command is None or name == command:
             module = importlib.import_module(f"layoutdsl.cli.{module_name}")
-        except ModuleNotFoundError as error:
-            if error.name != f"layoutdsl.cli.{module_name}":
-                raise
-            continue  # a command still being built is simply not offered
-        module.add_parser(subparsers)
+            module.add_parser(subparsers)
+        else:
+            subparsers.add_parser(name, help=summary)
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    # The first plain word names the command; top-level options take no values.
+    command = next((word for word in argv if not word.startswith("-")), None)
+    parser = build_parser(command if command in COMMANDS else None)
     args = parser.parse_args(argv)
     if not getattr(args, "run", None):
         parser.print_help(sys.stderr)
