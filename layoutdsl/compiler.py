@@ -25,7 +25,16 @@ from layoutdsl.model import (
     rects_from_model,
     warm_start_from_rects,
 )
-from layoutdsl.solve import ProgressCallback, SolveOptions, SolveOutcome, polish, relative_gap, solve
+from layoutdsl.solve import (
+    ProgressCallback,
+    SolveOptions,
+    SolveOutcome,
+    improve_by_neighbourhoods,
+    polish,
+    relative_gap,
+    solve,
+    stderr_progress,
+)
 from layoutdsl.verify import verify
 
 StartProvider = Callable[[Spec, SolveOptions], "dict[str, Rect] | None"]
@@ -37,6 +46,10 @@ START_SHARE = 0.5
 
 POLISH_SHARE = 0.1
 """Share of the time limit for polishing a start with its relations fixed (solve.polish)."""
+
+LNS_SHARE = 0.7
+"""Share of the time left after polishing for the neighbourhood search
+(solve.improve_by_neighbourhoods); branch-and-bound over the whole model gets the rest."""
 
 
 @dataclass(slots=True)
@@ -112,6 +125,14 @@ def compile_spec(
     began = time.monotonic()
     deadline = began + options.time_limit
     timings: dict[str, float] = {}
+    if progress is None and not options.quiet:
+        progress = stderr_progress
+    if progress is not None:
+        report = progress
+        # every stage reports seconds since the compile began, not since its own start
+
+        def progress(_elapsed: float, incumbent: float | None, gap: float | None) -> None:
+            report(time.monotonic() - began, incumbent, gap)
     formulation = options.formulation
     method = "scip"
     rects_start: dict[str, Rect] | None = dict(start) if start is not None else None
@@ -151,6 +172,12 @@ def compile_spec(
         else:
             warm_start_from_rects(model, spec, rects_start)
         timings["polish"] = time.monotonic() - t0
+        if first_polish.has_solution:
+            t0 = time.monotonic()
+            lns_deadline = time.monotonic() + LNS_SHARE * max(0.0, deadline - time.monotonic())
+            improve_by_neighbourhoods(model, options, deadline=lns_deadline, progress=progress)
+            polished = rects_from_model(model)
+            timings["neighbourhoods"] = time.monotonic() - t0
 
     remaining = max(0.5, deadline - time.monotonic())
     t0 = time.monotonic()

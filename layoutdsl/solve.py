@@ -12,12 +12,15 @@ Pyomo's capture pipe deadlocks the process (shared/notes/solver-scouting.md).
 from __future__ import annotations
 
 import math
+import random
 import sys
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 
-import pyomo.environ as pyo  # noqa: F401  (registers the solver plugins; must come first)
+import pyomo.environ as pyo  # registers the solver plugins: must come before the solver import
+from pyomo.common.timing import HierarchicalTimer
 from pyomo.contrib.solver.solvers.scip.scip_direct import ScipDirect
 from pyscipopt import SCIP_EVENTTYPE, SCIP_PARAMEMPHASIS, SCIP_PARAMSETTING, Eventhdlr
 
@@ -120,7 +123,9 @@ def stderr_progress(elapsed: float, incumbent: float | None, gap: float | None) 
 
 
 class _Watch(Eventhdlr):
-    """Reports progress every `interval` seconds and interrupts SCIP past the hard deadline."""
+    """Tracks the incumbent and bound as SCIP finds them, and interrupts SCIP past the hard
+    deadline. Progress lines come from a ticker thread (see _optimize): SCIP can spend long
+    stretches in heuristics' sub-solvers, whose events never reach this handler."""
 
     EVENTS = (
         SCIP_EVENTTYPE.BESTSOLFOUND,
@@ -138,6 +143,8 @@ class _Watch(Eventhdlr):
         self.interval = interval
         self.next_report = started + interval
         self.first_solution: float | None = None
+        self.primal: float | None = None
+        self.dual: float | None = None
         self.guard_fired = False
 
     def eventinit(self):
@@ -150,19 +157,45 @@ class _Watch(Eventhdlr):
 
     def eventexec(self, event):
         now = time.monotonic()
-        if event.getType() == SCIP_EVENTTYPE.BESTSOLFOUND and self.first_solution is None:
-            self.first_solution = now - self.started
+        if event.getType() == SCIP_EVENTTYPE.BESTSOLFOUND:
+            if self.first_solution is None:
+                self.first_solution = now - self.started
+            self.primal = self.model.getPrimalbound()
+        if self.primal is not None and event.getType() in (SCIP_EVENTTYPE.NODESOLVED, SCIP_EVENTTYPE.BESTSOLFOUND):
+            self.dual = self.model.getDualbound()
         if now >= self.hard_deadline and not self.guard_fired:
             self.guard_fired = True
             self.model.interruptSolve()
-            return
+
+    def tick(self, scip_model) -> None:
+        """Called by the ticker thread about four times a second."""
+        now = time.monotonic()
+        if now >= self.hard_deadline and not self.guard_fired:
+            self.guard_fired = True
+            try:
+                scip_model.interruptSolve()  # sets SCIP's interrupt flag; SCIP stops at its next check
+            except Exception:  # noqa: BLE001  (SCIP refuses outside its solving stages)
+                self.guard_fired = False
         if self.progress is not None and now >= self.next_report:
             self.next_report = now + self.interval
-            primal = dual = None
-            if self.model.getNSols() > 0:
-                primal = self.model.getPrimalbound()
-                dual = self.model.getDualbound()
-            self.progress(now - self.started, primal, relative_gap(primal, dual))
+            self.progress(now - self.started, self.primal, relative_gap(self.primal, self.dual))
+
+
+def _optimize(scip_model, watch: _Watch) -> None:
+    """Run SCIP without holding the GIL while a ticker thread reports progress and guards time."""
+    stop = threading.Event()
+
+    def ticker() -> None:
+        while not stop.wait(0.25):
+            watch.tick(scip_model)
+
+    thread = threading.Thread(target=ticker, name="layoutdsl-scip-ticker", daemon=True)
+    thread.start()
+    try:
+        scip_model.optimizeNogil()
+    finally:
+        stop.set()
+        thread.join()
 
 
 _STATUS = {
@@ -219,34 +252,8 @@ def solve(
     if options.quiet:
         progress = None
     started = time.monotonic()
-    objective = model.eq5_1_objective
-    if feasibility_only:
-        objective.deactivate()
-    try:
-        interface = ScipDirect()
-        config = interface.config(value={"time_limit": options.time_limit}, preserve_implicit=True)
-        from pyomo.common.timing import HierarchicalTimer
-
-        config.timer = HierarchicalTimer()
-        # Pyomo's translation (private API of the pinned Pyomo 6.10.x): the public solve() would
-        # run optimize() itself without our event handler, emphasis and full warm start
-        scip_model, loader, _ = interface._create_solver_model(model, config)
-    finally:
-        if feasibility_only:
-            objective.activate()
-    scip_model.hideOutput(True)
-    scip_model.setParam("display/verblevel", 0)
-    _apply_emphasis(scip_model, options.emphasis)
-    scip_model.setParam("randomization/randomseedshift", int(options.seed) % 2**31)
-    scip_model.setParam("lp/threads", max(1, int(options.threads)))
-    scip_model.setParam("timing/clocktype", 2)  # wall clock: the limit a user means
-    remaining = max(0.05, options.time_limit - (time.monotonic() - started))
-    scip_model.setParam("limits/time", remaining)
-    scip_model.setParam("limits/gap", float(options.gap))
-    if options.node_limit is not None:
-        scip_model.setParam("limits/nodes", int(options.node_limit))
-    if options.solution_limit is not None:
-        scip_model.setParam("limits/solutions", int(options.solution_limit))
+    interface, scip_model, loader = _translate(model, feasibility_only=feasibility_only)
+    _configure(scip_model, options, remaining=options.time_limit - (time.monotonic() - started))
     if feasibility_only:
         scip_model.setParam("limits/solutions", 1)
 
@@ -255,8 +262,10 @@ def solve(
         start_accepted = _add_start(interface, scip_model, model, feasibility_only)
 
     watch = _Watch(started, started + options.time_limit + GUARD_GRACE_SECONDS, progress)
+    if start_accepted and not feasibility_only:
+        watch.primal = pyo.value(model.eq5_1_objective.expr)  # no event announces a start
     scip_model.includeEventhdlr(watch, "layoutdsl_watch", "progress and wall-clock guard")
-    scip_model.optimize()
+    _optimize(scip_model, watch)
     seconds = time.monotonic() - started
 
     raw = scip_model.getStatus()
@@ -275,7 +284,7 @@ def solve(
     if has_solution and first is None:
         first = seconds  # the start was accepted before any event could fire
     if has_solution and start_accepted:
-        first = min(first, seconds)
+        first = 0.0  # the start itself is a layout
     outcome = SolveOutcome(
         status=status,
         has_solution=has_solution,
@@ -289,6 +298,40 @@ def solve(
     )
     scip_model.freeProb()
     return outcome
+
+
+def _translate(model: pyo.ConcreteModel, *, feasibility_only: bool = False):
+    """Pyomo model -> (ScipDirect interface, PySCIPOpt model, solution loader)."""
+    objective = model.eq5_1_objective
+    if feasibility_only:
+        objective.deactivate()
+    try:
+        interface = ScipDirect()
+        config = interface.config(value={}, preserve_implicit=True)
+        config.timer = HierarchicalTimer()
+        # Pyomo's translation (private API of the pinned Pyomo 6.10.x): the public solve() would
+        # run optimize() itself without our event handler, emphasis and full warm start
+        scip_model, loader, _ = interface._create_solver_model(model, config)
+    finally:
+        if feasibility_only:
+            objective.activate()
+    scip_model.hideOutput(True)
+    return interface, scip_model, loader
+
+
+def _configure(scip_model, options: SolveOptions, *, remaining: float) -> None:
+    """SCIP parameters from the options: quiet, emphasis, seed, limits, wall clock."""
+    scip_model.setParam("display/verblevel", 0)
+    _apply_emphasis(scip_model, options.emphasis)
+    scip_model.setParam("randomization/randomseedshift", int(options.seed) % 2**31)
+    scip_model.setParam("lp/threads", max(1, int(options.threads)))
+    scip_model.setParam("timing/clocktype", 2)  # wall clock: the limit a user means
+    scip_model.setParam("limits/time", max(0.05, remaining))
+    scip_model.setParam("limits/gap", float(options.gap))
+    if options.node_limit is not None:
+        scip_model.setParam("limits/nodes", int(options.node_limit))
+    if options.solution_limit is not None:
+        scip_model.setParam("limits/solutions", int(options.solution_limit))
 
 
 def _add_start(interface: ScipDirect, scip_model, model: pyo.ConcreteModel, feasibility_only: bool) -> bool:
@@ -345,3 +388,134 @@ def polish(model: pyo.ConcreteModel, options: SolveOptions, *, gap: float = 1e-4
     finally:
         for var in binaries:
             var.unfix()
+
+
+@dataclass(slots=True)
+class NeighbourhoodOutcome:
+    """What improve_by_neighbourhoods did; the best layout found is loaded on the model."""
+
+    rounds: int
+    improvements: int
+    objective: float
+    """The model's objective at the end (SCIP's form, helper slack included)."""
+    seconds: float
+
+
+def _binaries_by_rooms(model: pyo.ConcreteModel) -> list[tuple[object, tuple[str, ...]]]:
+    """Every free binary of the model with the rooms whose geometry it decides."""
+    rooms = set(model.rooms)
+    found = [(model.o[r], (r,)) for r in model.rooms]
+    for (a, b, _side), var in model.eq5_8_non_overlap.side.items():
+        found.append((var, tuple(r for r in (a, b) if r in rooms)))
+    for (a, b), var in model.eq5_9_adjacency.stacked.items():
+        found.append((var, (a, b)))
+    for (r, _side), var in model.eq5_12_on_boundary.side.items():
+        found.append((var, (r,)))
+    return [(var, owners) for var, owners in found if not var.fixed]
+
+
+def _continuous_by_room(model: pyo.ConcreteModel) -> dict[str, list]:
+    """Each room's continuous variables: its geometry and its objective helpers."""
+    families = [model.x, model.y, model.w, model.h, model.eq5_2_cover.area,
+                model.eq5_3_error.err_w, model.eq5_3_error.err_h, model.eq5_3_error.sq]
+    if hasattr(model, "long"):
+        families += [model.long, model.short]
+    return {r: [family[r] for family in families] for r in model.rooms}
+
+
+def improve_by_neighbourhoods(
+    model: pyo.ConcreteModel,
+    options: SolveOptions,
+    *,
+    deadline: float,
+    size: int = 4,
+    sub_seconds: float = 2.0,
+    sub_nodes: int = 200,
+    progress: ProgressCallback | None = None,
+) -> NeighbourhoodOutcome:
+    """Large-neighbourhood search from the layout on the model, until `deadline`.
+
+    Each round frees one room and its `size - 1` nearest rooms: their binaries (relations,
+    orientations, sides) and their geometry; every other room keeps its place, size and
+    relations. SCIP re-places the neighbourhood (warm-started from the current layout, at
+    most `sub_nodes` branch-and-bound nodes and `sub_seconds`). After an improvement, a polish round keeps every binary and frees
+    all geometry. Rooms are visited in an order drawn from the seed; the search stops at the
+    deadline or after a full pass without an improvement; rounds stop at a node limit, so
+    unless a round or the whole search runs into its time limit, the result depends only on
+    the seed. Branch-and-bound over the whole model rarely improves a
+    layout of 15+ rooms within a minute (its area terms are nonconvex for every room); a
+    neighbourhood of four rooms solves in about a second.
+    """
+    if progress is None and not options.quiet:
+        progress = stderr_progress
+    if options.quiet:
+        progress = None
+    started = time.monotonic()
+    interface, scip_model, loader = _translate(model)
+    sub_options = replace(options, gap=1e-4, emphasis="default", node_limit=sub_nodes, solution_limit=None)
+    _configure(scip_model, sub_options, remaining=sub_seconds)
+    scip_model.setPresolve(SCIP_PARAMSETTING.FAST)  # measured: sub-problems solve faster
+    watch = _Watch(started, deadline + GUARD_GRACE_SECONDS, None)
+    scip_model.includeEventhdlr(watch, "layoutdsl_watch", "wall-clock guard")
+    var_map = interface._pyomo_var_to_solver_var_map
+    binaries = [(var, var_map[var], owners) for var, owners in _binaries_by_rooms(model) if var in var_map]
+    continuous = {r: [(v, var_map[v], v.bounds) for v in vs if v in var_map and not v.fixed]
+                  for r, vs in _continuous_by_room(model).items()}
+    order = list(model.rooms)
+    random.Random(options.seed).shuffle(order)
+    objective = pyo.value(model.eq5_1_objective.expr)
+    rounds = improvements = stale = visits = 0
+    polish_next = False
+    next_report = started + 1.5
+    while stale < len(order) and deadline - time.monotonic() > 0.1:
+        rounds += 1
+        if polish_next:
+            free_binaries, free_rooms = set(), set(model.rooms)
+        else:
+            centre_room = order[visits % len(order)]
+            visits += 1
+            centres = {r: (pyo.value(model.x[r]) + pyo.value(model.w[r]) / 2,
+                           pyo.value(model.y[r]) + pyo.value(model.h[r]) / 2) for r in model.rooms}
+            cx, cy = centres[centre_room]
+            near = sorted(model.rooms, key=lambda r: ((centres[r][0] - cx) ** 2 + (centres[r][1] - cy) ** 2, r))
+            free_rooms = set(near[:size])
+            free_binaries = free_rooms
+        scip_model.freeTransform()
+        for var, scip_var, owners in binaries:
+            if owners and all(owner in free_binaries for owner in owners):
+                scip_model.chgVarLb(scip_var, 0)
+                scip_model.chgVarUb(scip_var, 1)
+            else:
+                value = round(var.value)
+                scip_model.chgVarLb(scip_var, value)
+                scip_model.chgVarUb(scip_var, value)
+        for room, entries in continuous.items():
+            for var, scip_var, (lb, ub) in entries:
+                if room in free_rooms:
+                    scip_model.chgVarLb(scip_var, -scip_model.infinity() if lb is None else lb)
+                    scip_model.chgVarUb(scip_var, scip_model.infinity() if ub is None else ub)
+                else:
+                    scip_model.chgVarLb(scip_var, var.value)
+                    scip_model.chgVarUb(scip_var, var.value)
+        scip_model.setParam("limits/time", max(0.05, min(sub_seconds, deadline - time.monotonic())))
+        _add_start(interface, scip_model, model, False)
+        _optimize(scip_model, watch)
+        improved = (scip_model.getNSols() > 0
+                    and scip_model.getPrimalbound() < objective - 1e-6 * max(1.0, abs(objective)))
+        if improved:
+            loader.load_vars()
+            objective = pyo.value(model.eq5_1_objective.expr)
+            improvements += 1
+        if polish_next:
+            polish_next = False
+        elif improved:
+            stale = 0
+            polish_next = True
+        else:
+            stale += 1
+        now = time.monotonic()
+        if progress is not None and now >= next_report:
+            next_report = now + 1.5
+            progress(now - started, objective, None)
+    scip_model.freeProb()
+    return NeighbourhoodOutcome(rounds, improvements, objective, time.monotonic() - started)

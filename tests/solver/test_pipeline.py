@@ -230,3 +230,24 @@ def test_a_39_room_planted_start_is_polished_and_verified():
     assert result.layout is not None, result.diagnostics
     assert verify(big, result.layout) == []
     assert result.layout.solve.objective < objective_of_rects(big, rects)
+
+
+def test_neighbourhood_search_improves_a_start_and_depends_only_on_the_seed():
+    import time
+
+    from layoutdsl.solve import improve_by_neighbourhoods
+
+    from ._planted import planted
+
+    spec_, rects = planted(2, 2)  # 10 rooms
+    results = []
+    for _ in range(2):
+        model = build_model(spec_)
+        warm_start_from_rects(model, spec_, rects)
+        outcome = improve_by_neighbourhoods(model, SolveOptions(time_limit=60, seed=1, quiet=True),
+                                            deadline=time.monotonic() + 60, sub_seconds=20)
+        assert outcome.rounds >= len(spec_.rooms)  # stopped by a pass without improvement
+        results.append(rects_from_model(model))
+    assert results[0] == results[1]
+    assert objective_of_rects(spec_, results[0]) < objective_of_rects(spec_, rects) - 0.5
+    assert verify(spec_, layout_from_rects(spec_, results[0])) == []
