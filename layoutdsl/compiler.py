@@ -179,16 +179,22 @@ def compile_spec(
             polished = rects_from_model(model)
             timings["neighbourhoods"] = time.monotonic() - t0
 
-    remaining = max(0.5, deadline - time.monotonic())
+    # keep time for polishing SCIP's incumbent; translating the model costs about what
+    # building it did
+    reserve = min(POLISH_SHARE * options.time_limit, timings["build"] + 1.0)
+    remaining = max(0.5, deadline - time.monotonic() - reserve)
+    start_objective = objective_of_rects(spec, polished) if polished is not None else None
     t0 = time.monotonic()
     outcome = solve(model, replace(options, time_limit=remaining), progress=progress,
                     warm_start=rects_start is not None)
     timings["solve"] = time.monotonic() - t0
-    if outcome.has_solution:
+    improved = outcome.has_solution and (
+        start_objective is None or outcome.objective is None or outcome.objective < start_objective - 1e-6)
+    if improved:
         # SCIP's incumbent need not be the best geometry for its own relations
         t0 = time.monotonic()
         incumbent = rects_from_model(model)
-        last = max(0.2, min(POLISH_SHARE * options.time_limit, 2.0))
+        last = max(0.2, deadline - time.monotonic())
         if not polish(model, replace(options, time_limit=last, quiet=True)).has_solution:
             warm_start_from_rects(model, spec, incumbent)
         timings["polish"] = timings.get("polish", 0.0) + time.monotonic() - t0
