@@ -265,11 +265,21 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
                                   outdir=outdir, formats=formats, robot_room=args.robot_room)
     except OSError as error:
         return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
-    layouts = getattr(result, "layouts", result)
-    count = sum(1 for item in layouts if item is not None) if layouts is not None else 0
-    diversity = getattr(result, "diversity", None)
+    layouts = list(result.layouts)
+    count = sum(1 for layout in layouts if layout is not None)
     line = f"compiled `{spec.name}`: {count} of {args.variants} variants"
-    if diversity is not None:
-        line += f", diversity {diversity:.2f}"
-    print(line)
+    if result.diversity is not None:
+        line += f", diversity {result.diversity:.2f} (mean share of room pairs whose relative position differs)"
+    lines = [line]
+    for index, layout in enumerate(layouts, start=1):
+        if layout is None:
+            lines.append(f"  {spec.name}-{index}: no layout")
+            continue
+        info = layout.solve
+        objective = "-" if info is None or info.objective is None else f"{info.objective:.4g}"
+        status = "-" if info is None else _STATUS_TEXT.get(info.status, info.status)
+        lines.append(f"  {spec.name}-{index}: objective {objective}, {status}")
+    if result.paths:
+        lines.append("  wrote       " + ", ".join(str(p) for p in result.paths))
+    print("\n".join(lines))
     return exitcodes.OK if count == args.variants else exitcodes.NO_LAYOUT
