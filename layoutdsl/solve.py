@@ -500,8 +500,10 @@ def improve_by_neighbourhoods(
         scip_model.setParam("limits/time", max(0.05, min(sub_seconds, deadline - time.monotonic())))
         _add_start(interface, scip_model, model, False)
         _optimize(scip_model, watch)
-        improved = (scip_model.getNSols() > 0
-                    and scip_model.getPrimalbound() < objective - 1e-6 * max(1.0, abs(objective)))
+        # improvements below a tenth of the target gap are noise that would keep the search
+        # going without changing the answer
+        threshold = max(1e-6, options.gap / 10) * max(1.0, abs(objective))
+        improved = scip_model.getNSols() > 0 and scip_model.getPrimalbound() < objective - threshold
         if improved:
             loader.load_vars()
             objective = pyo.value(model.eq5_1_objective.expr)

@@ -61,11 +61,12 @@ def _without_timing(layout_json: str) -> dict:
     return data
 
 
-@pytest.mark.parametrize("strategy", ["auto", "thesis"])
-def test_same_spec_and_seed_give_identical_layouts(strategy):
-    options = SolveOptions(time_limit=30, gap=0.02, node_limit=100, seed=3, quiet=True, strategy=strategy)
-    first = compile_spec(FIVE, options, start_provider=_no_start)
-    second = compile_spec(FIVE, options, start_provider=_no_start)
+@pytest.mark.parametrize("strategy, provider", [("auto", None), ("auto", _no_start), ("thesis", None)],
+                         ids=["construction+scip", "scip", "thesis"])
+def test_same_spec_and_seed_give_identical_layouts(strategy, provider):
+    options = SolveOptions(time_limit=60, gap=0.02, node_limit=100, seed=3, quiet=True, strategy=strategy)
+    first = compile_spec(FIVE, options, start_provider=provider)
+    second = compile_spec(FIVE, options, start_provider=provider)
     assert first.layout is not None and second.layout is not None
     assert first.layout.solve.status in ("gap_limit", "optimal", "node_limit")
     assert _without_timing(first.layout.to_json()) == _without_timing(second.layout.to_json())
