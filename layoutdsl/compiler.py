@@ -2,8 +2,10 @@
 
 Stages, each callable alone: a first feasible geometry (`start`, or a `start_provider` such
 as the construction of issue 6), `model.build_model`, `model.warm_start_from_rects`,
-`solve.solve`, `layout_from_model`, `verify.verify`. A layout that fails verification is
-never returned; infeasibility and time-outs become E9xx diagnostics (explain.py).
+`solve.polish` (best geometry for the start's relations), `solve.improve_by_neighbourhoods`
+(large-neighbourhood search), `solve.solve` (branch-and-bound over the whole model, warm
+started), `layout_from_rects`, `verify.verify`. A layout that fails verification is never
+returned; infeasibility and time-outs become E9xx diagnostics (explain.py).
 """
 
 from __future__ import annotations
@@ -70,7 +72,8 @@ class CompileResult:
     """A SolveInfo status when there is a layout; else 'infeasible', 'no_layout' (time limit
     without one) or 'verify_failed'."""
     timings: dict[str, float] = field(default_factory=dict)
-    """Seconds per stage: 'start', 'build', 'solve', 'verify', 'explain', 'total'."""
+    """Seconds per stage: 'start', 'build', 'polish', 'neighbourhoods', 'solve', 'verify',
+    'explain', 'total'."""
     outcome: SolveOutcome | None = None
 
 
@@ -80,10 +83,7 @@ def default_start_provider(spec: Spec, options: SolveOptions) -> dict[str, Rect]
         from layoutdsl.construct import construct_start
     except ImportError:
         return None
-    try:
-        return construct_start(spec, seed=options.seed, deadline=time.monotonic() + options.time_limit)
-    except NotImplementedError:
-        return None
+    return construct_start(spec, seed=options.seed, deadline=time.monotonic() + options.time_limit)
 
 
 def layout_from_rects(spec: Spec, rects: Mapping[str, Rect], info: SolveInfo | None = None) -> Layout:

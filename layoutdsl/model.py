@@ -82,16 +82,18 @@ class _Bounds:
     h: tuple[float, float]
     x: tuple[float, float]
     y: tuple[float, float]
+    limit: tuple[float, float] = (math.inf, math.inf)
+    """The boundary's width and height: x + w and y + h never exceed them (5.7)."""
 
     @property
     def right(self) -> tuple[float, float]:
         """Bounds of x + w."""
-        return (self.x[0] + self.w[0], self.x[1] + self.w[1])
+        return (self.x[0] + self.w[0], min(self.x[1] + self.w[1], self.limit[0]))
 
     @property
     def top(self) -> tuple[float, float]:
         """Bounds of y + h."""
-        return (self.y[0] + self.h[0], self.y[1] + self.h[1])
+        return (self.y[0] + self.h[0], min(self.y[1] + self.h[1], self.limit[1]))
 
 
 def room_bounds(spec: Spec) -> dict[str, _Bounds]:
@@ -117,7 +119,7 @@ def room_bounds(spec: Spec) -> dict[str, _Bounds]:
             y_hi = min(y_hi, py)
             y_lo = max(y_lo, py - h_hi)
         x_lo, y_lo = min(x_lo, x_hi), min(y_lo, y_hi)
-        bounds[room.id] = _Bounds((w_lo, w_hi), (h_lo, h_hi), (x_lo, x_hi), (y_lo, y_hi))
+        bounds[room.id] = _Bounds((w_lo, w_hi), (h_lo, h_hi), (x_lo, x_hi), (y_lo, y_hi), (width, height))
     return bounds
 
 
@@ -202,7 +204,6 @@ def build_model(
         return max(value, 0.0) if formulation.tight_big_m else global_m
 
     m = pyo.ConcreteModel(name=spec.name)
-    m.layout_spec = spec  # lets solve/compile code read the spec back; not part of the math
     m.formulation = formulation
 
     # ----- sets named after DSL concepts -----

@@ -3,7 +3,9 @@
 We use Pyomo's `scip_direct` interface (pyomo.contrib.solver, Pyomo 6.10.x, PySCIPOpt 6.x) to
 translate the Pyomo model, then drive the PySCIPOpt model ourselves, because we need what
 `solve()` does not offer: a complete warm start (continuous variables too), SCIP's emphasis
-meta settings, an event handler for progress and for a wall-clock guard, and our own gap.
+meta settings, progress lines and a wall-clock guard (an event handler plus a ticker thread
+while SCIP runs without the GIL), re-solving one translated model with changed bounds
+(neighbourhood search), and our own gap.
 
 Console output stays off (`display/verblevel 0`): more than ~64 KiB of SCIP output through
 Pyomo's capture pipe deadlocks the process (shared/notes/solver-scouting.md).
@@ -34,7 +36,8 @@ STRATEGIES = ("auto", "thesis", "cycles")
 """auto: first-feasible construction then SCIP; thesis: SCIP from scratch; cycles: §5.5.3."""
 
 GUARD_GRACE_SECONDS = 1.0
-"""How far past its time limit a solve may run before our event handler interrupts it."""
+"""How far past its time limit a solve may run before our guard interrupts it (SCIP's own
+time limit normally stops it first)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -282,7 +285,7 @@ def solve(
     gap = relative_gap(primal, bound) if not feasibility_only else None
     first = watch.first_solution
     if has_solution and first is None:
-        first = seconds  # the start was accepted before any event could fire
+        first = seconds  # no event reported when: the end is an upper bound
     if has_solution and start_accepted:
         first = 0.0  # the start itself is a layout
     outcome = SolveOutcome(
