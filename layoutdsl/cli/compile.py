@@ -54,9 +54,10 @@ def add_parser(subparsers) -> None:
         description=(
             "Compile a layout spec: lint it, solve the thesis' MIQP (seed §5.5.1) with SCIP, "
             "verify the result independently and write OUTDIR/NAME.layout.json plus the "
-            "chosen output formats. Flags override the spec's settings. With a wall-clock "
-            "time limit as the stopping rule, runs may differ; with a gap, node limit or "
-            "solution limit, the same spec and seed give the same layout."
+            "chosen output formats. Flags override the spec's settings. The same spec and "
+            "seed give the same layout whenever the solve stops at its gap, node limit or "
+            "solution limit; a run that stops at the wall-clock time limit may differ from "
+            "run to run (the summary says which rule stopped it)."
         ),
         epilog=exitcodes.EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
