@@ -248,6 +248,8 @@ class _Outcome:
     stretched: dict[Pair, float]
     values: dict[str, float]
     """Every variable's value by name, to warm-start the next, wider model."""
+    orientations: dict[str, bool]
+    """Room id -> True when the room's long side lies along x."""
 
 
 def _solve_model(
@@ -258,6 +260,8 @@ def _solve_model(
     mode: str,
     seconds: float,
     seed: int,
+    orientations: dict[str, bool],
+    turnable: frozenset[str] = frozenset(),
     start: _Outcome | None = None,
 ) -> _Outcome | None:
     """Solve the rooms' LP/MIP under the allowed pair directions; None without a solution.
@@ -289,26 +293,32 @@ def _solve_model(
 
     boxes: dict[str, _Box] = {}
     deviation = []
+    orientation_vars: dict[str, object] = {}
     for room in spec.rooms:
         sizes = RoomSizes.of(room)
-        gx, gy, gw, gh = geometry[room.id]
-        long_x = gw >= gh
-        w_lo, w_hi, h_lo, h_hi = sizes.bounds(long_x)
-        w_lo, h_lo = w_lo + SAFETY, h_lo + SAFETY
-        w_hi, h_hi = max(w_lo, w_hi - SAFETY), max(h_lo, h_hi - SAFETY)
+        long_x = orientations[room.id]
         x = model.addVar(f"x_{room.id}", lb=0.0, ub=width)
         y = model.addVar(f"y_{room.id}", lb=0.0, ub=height)
-        w = model.addVar(f"w_{room.id}", lb=w_lo, ub=w_hi)
-        h = model.addVar(f"h_{room.id}", lb=h_lo, ub=h_hi)
+        if room.id in turnable:
+            w, h, targets = _turnable_sizes(model, room, sizes)
+            orientation_vars[room.id] = targets[2]
+            targets = targets[:2]
+        else:
+            w_lo, w_hi, h_lo, h_hi = sizes.bounds(long_x)
+            w_lo, h_lo = w_lo + SAFETY, h_lo + SAFETY
+            w_hi, h_hi = max(w_lo, w_hi - SAFETY), max(h_lo, h_hi - SAFETY)
+            w = model.addVar(f"w_{room.id}", lb=w_lo, ub=w_hi)
+            h = model.addVar(f"h_{room.id}", lb=h_lo, ub=h_hi)
+            if not sizes.corridor:
+                long_side, short_side = (w, h) if long_x else (h, w)
+                model.addCons(sizes.min_ar * short_side + SAFETY <= long_side)
+                model.addCons(long_side <= sizes.max_ar * short_side - SAFETY)
+            targets = sizes.targets(long_x)
         model.addCons(x + w <= width - SAFETY)
         model.addCons(y + h <= height - SAFETY)
-        if not sizes.corridor:
-            long_side, short_side = (w, h) if long_x else (h, w)
-            model.addCons(sizes.min_ar * short_side + SAFETY <= long_side)
-            model.addCons(long_side <= sizes.max_ar * short_side - SAFETY)
         boxes[room.id] = _Box(x, y, w, h)
         if not repair:
-            for var, target in zip((w, h), sizes.targets(long_x)):
+            for var, target in zip((w, h), targets):
                 dev = model.addVar(f"d_{var.name}", lb=0.0)
                 model.addCons(dev >= var - target)
                 model.addCons(dev >= target - var)
@@ -400,7 +410,33 @@ def _solve_model(
         for room in spec.rooms
     }
     values = {var.name: solution[var] for var in model.getVars()}
-    return _Outcome(rects, chosen, stretched, values)
+    turned = dict(orientations)
+    for room_id, var in orientation_vars.items():
+        turned[room_id] = solution[var] > 0.5
+    return _Outcome(rects, chosen, stretched, values, turned)
+
+
+def _turnable_sizes(model, room: Room, sizes: RoomSizes):
+    """w, h and (target w, target h, o) of a room free to lie along x (o = 1) or y (o = 0)."""
+    o = model.addVar(f"o_{room.id}", vtype="B")
+    w = model.addVar(f"w_{room.id}", lb=sizes.lo_short + SAFETY, ub=sizes.hi_long - SAFETY)
+    h = model.addVar(f"h_{room.id}", lb=sizes.lo_short + SAFETY, ub=sizes.hi_long - SAFETY)
+    spread_lo = sizes.lo_long - sizes.lo_short
+    spread_hi = sizes.hi_long - sizes.hi_short
+    model.addCons(w >= sizes.lo_short + SAFETY + spread_lo * o)
+    model.addCons(w <= sizes.hi_short - SAFETY + spread_hi * o)
+    model.addCons(h >= sizes.lo_long + SAFETY - spread_lo * o)
+    model.addCons(h <= sizes.hi_long - SAFETY - spread_hi * o)
+    if not sizes.corridor:
+        big = sizes.max_ar * sizes.hi_long + 1.0
+        model.addCons(sizes.min_ar * h + SAFETY - w <= big * (1 - o))
+        model.addCons(w - sizes.max_ar * h + SAFETY <= big * (1 - o))
+        model.addCons(sizes.min_ar * w + SAFETY - h <= big * o)
+        model.addCons(h - sizes.max_ar * w + SAFETY <= big * o)
+    spread_target = sizes.target_long - sizes.target_short
+    target_w = sizes.target_short + spread_target * o
+    target_h = sizes.target_long - spread_target * o
+    return w, h, (target_w, target_h, o)
 
 
 def _add_start(model, start: _Outcome, options: dict[Pair, tuple[str, ...]]) -> None:
@@ -413,6 +449,8 @@ def _add_start(model, start: _Outcome, options: dict[Pair, tuple[str, ...]]) -> 
             continue
         if name in start.values:
             model.setSolVal(solution, var, start.values[name])
+        elif name.startswith("o_"):
+            model.setSolVal(solution, var, float(start.orientations[name[2:]]))
     for pair, allowed in options.items():
         if len(allowed) == 1:
             continue
@@ -550,7 +588,7 @@ def check_start(spec: Spec, rects: dict[str, Rect]) -> list[str]:
 # ---------------------------------------------------------------------------------------
 
 
-def hint_geometry(spec: Spec, shrink: bool = True) -> dict[str, Rect] | None:
+def hint_geometry(spec: Spec, shrink: bool | float = True) -> dict[str, Rect] | None:
     """The hints as rectangles, or (`shrink`) each shrunk to its target size in its centre.
 
     An imported room's hint is its original bounding box; the target is that box scaled by
@@ -565,10 +603,67 @@ def hint_geometry(spec: Spec, shrink: bool = True) -> dict[str, Rect] | None:
     for room in spec.rooms:
         hint = hints[room.id]
         sizes = RoomSizes.of(room)
-        w, h = sizes.targets(hint.w >= hint.h) if shrink else (hint.w, hint.h)
+        w, h = sizes.targets(hint.w >= hint.h)
+        fill = (w * h) / max(hint.w * hint.h, 1e-9)
+        if shrink is False or (shrink is not True and fill >= shrink):
+            w, h = hint.w, hint.h
         cx, cy = hint.x + hint.w / 2, hint.y + hint.h / 2
         geometry[room.id] = (cx - w / 2, cy - h / 2, w, h)
     return geometry
+
+
+def spread_apart(
+    geometry: dict[str, Rect],
+    width: float,
+    height: float,
+    walldim: float,
+    *,
+    fixed: set[str] = frozenset(),
+    iterations: int = 300,
+) -> dict[str, Rect]:
+    """Push overlapping rectangles apart (each along its shallower overlap), inside the box.
+
+    A spring embedding ignores the rooms' sizes, so its rectangles pile up; relations read
+    off such a pile are mostly arbitrary. A few hundred rounds of pairwise pushes (numpy,
+    O(n^2) per round: fine for a few hundred rooms) leave a geometry whose relations are
+    nearly right, so the repair has little left to do. Rooms in `fixed` do not move.
+    """
+    import numpy as np
+
+    ids = list(geometry)
+    if len(ids) < 2:
+        return dict(geometry)
+    rects = np.array([geometry[i] for i in ids], dtype=float)
+    half_w, half_h = rects[:, 2] / 2, rects[:, 3] / 2
+    cx, cy = rects[:, 0] + half_w, rects[:, 1] + half_h
+    movable = np.array([0.0 if i in fixed else 1.0 for i in ids])
+    need_x = half_w[:, None] + half_w[None, :] + walldim
+    need_y = half_h[:, None] + half_h[None, :] + walldim
+    upper = np.triu(np.ones((len(ids), len(ids)), dtype=bool), 1)
+    for _ in range(iterations):
+        dx = cx[None, :] - cx[:, None]
+        dy = cy[None, :] - cy[:, None]
+        over_x = need_x - np.abs(dx)
+        over_y = need_y - np.abs(dy)
+        clash = (over_x > 0) & (over_y > 0) & upper
+        if not clash.any():
+            break
+        along_x = clash & (over_x <= over_y)
+        along_y = clash & ~along_x
+        # ties (same centre) are pushed by index order, so the result stays deterministic
+        sign_x = np.where(dx >= 0, 1.0, -1.0)
+        sign_y = np.where(dy >= 0, 1.0, -1.0)
+        push_x = np.where(along_x, over_x * sign_x / 2, 0.0)
+        push_y = np.where(along_y, over_y * sign_y / 2, 0.0)
+        cx += (push_x.sum(axis=0) - push_x.sum(axis=1)) * movable * 0.5
+        cy += (push_y.sum(axis=0) - push_y.sum(axis=1)) * movable * 0.5
+        cx = np.clip(cx, half_w, np.maximum(half_w, width - half_w))
+        cy = np.clip(cy, half_h, np.maximum(half_h, height - half_h))
+    return {
+        room_id: (float(cx[k] - half_w[k]), float(cy[k] - half_h[k]),
+                  float(rects[k, 2]), float(rects[k, 3]))
+        for k, room_id in enumerate(ids)
+    }
 
 
 DEFAULT_SECONDS = 60.0
@@ -600,19 +695,25 @@ def _repair(
         neighbours.setdefault(adj.b, set()).add(adj.a)
     best_total = math.inf
     stalls = 0
+    orientations = {
+        room_id: rect[2] >= rect[3] for room_id, rect in geometry.items()
+    }
+    turnable: set[str] = set()
     for round_index in range(len(FREE_RADII) * 3):
         left = deadline - time.monotonic()
         if left <= 0.05:
             return None
         outcome = _solve_model(problem, geometry, options, mode="repair",
-                               seconds=min(left, 1.0 + 0.25 * left), seed=seed, start=start)
+                               seconds=min(left, 1.0 + 0.25 * left), seed=seed,
+                               orientations=orientations, turnable=frozenset(turnable),
+                               start=start)
         if outcome is None:
             return None
         if not outcome.stretched:
             final_options = {pair: (direction,) for pair, direction in outcome.chosen.items()}
             final = _solve_model(problem, geometry, final_options, mode="final",
                                  seconds=max(0.5, min(5.0, deadline - time.monotonic())),
-                                 seed=seed)
+                                 seed=seed, orientations=outcome.orientations)
             for rects in (final.rects if final else None, outcome.rects):
                 if rects is None:
                     continue
@@ -632,9 +733,13 @@ def _repair(
             stalls += 1
         radius = FREE_RADII[min(round_index + stalls, len(FREE_RADII) - 1)]
         blamed = {thing for pair in outcome.stretched for thing in pair}
+        if stalls:
+            # no progress: the blamed rooms may need to turn, and the conflict's cause may
+            # lie further out, so look a step further each time
+            turnable |= blamed & set(orientations)
         for _ in range(stalls):
-            # no progress: the conflict's cause lies further out, so look a step further
             blamed |= {n for thing in blamed for n in neighbours.get(thing, ())}
+        orientations = dict(outcome.orientations)
         for pair in outcome.stretched:
             options[pair] = _widen(problem, geometry, pair, options[pair])
         for pair in problem.pairs:
@@ -694,10 +799,14 @@ def construct_start(
     return None
 
 
+SHRINK_ORDER: tuple[bool | float, ...] = (False, True)
+"""Hint geometries in the order tried: the original boxes, then boxes shrunk to target."""
+
+
 def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool):
     """The seed geometries to try, best first (a generator: each is built when needed)."""
     if not randomize:
-        for shrink in (False, True):
+        for shrink in SHRINK_ORDER:
             geometry = hint_geometry(spec, shrink=shrink)
             if geometry is not None:
                 yield geometry
@@ -777,4 +886,59 @@ def construct_geometry(spec: Spec, rng: random.Random) -> dict[str, Rect]:
             cx = w / 2 + (px - min(xs)) / span_x * max(0.0, boundary.w - w)
             cy = h / 2 + (py - min(ys)) / span_y * max(0.0, boundary.h - h)
         geometry[room.id] = (cx - w / 2, cy - h / 2, w, h)
-    return geometry
+    return spread_apart(geometry, boundary.w, boundary.h, spec.settings.walldim,
+                        fixed=set(fixed_points))
+
+
+def spread_apart(
+    geometry: dict[str, Rect],
+    width: float,
+    height: float,
+    walldim: float,
+    *,
+    fixed: set[str] = frozenset(),
+    iterations: int = 300,
+) -> dict[str, Rect]:
+    """Push overlapping rectangles apart (each along its shallower overlap), inside the box.
+
+    A spring embedding ignores the rooms' sizes, so its rectangles pile up; relations read
+    off such a pile are mostly arbitrary. A few hundred rounds of pairwise pushes (numpy,
+    O(n^2) per round: fine for a few hundred rooms) leave a geometry whose relations are
+    nearly right, so the repair has little left to do. Rooms in `fixed` do not move.
+    """
+    import numpy as np
+
+    ids = list(geometry)
+    if len(ids) < 2:
+        return dict(geometry)
+    rects = np.array([geometry[i] for i in ids], dtype=float)
+    half_w, half_h = rects[:, 2] / 2, rects[:, 3] / 2
+    cx, cy = rects[:, 0] + half_w, rects[:, 1] + half_h
+    movable = np.array([0.0 if i in fixed else 1.0 for i in ids])
+    need_x = half_w[:, None] + half_w[None, :] + walldim
+    need_y = half_h[:, None] + half_h[None, :] + walldim
+    upper = np.triu(np.ones((len(ids), len(ids)), dtype=bool), 1)
+    for _ in range(iterations):
+        dx = cx[None, :] - cx[:, None]
+        dy = cy[None, :] - cy[:, None]
+        over_x = need_x - np.abs(dx)
+        over_y = need_y - np.abs(dy)
+        clash = (over_x > 0) & (over_y > 0) & upper
+        if not clash.any():
+            break
+        along_x = clash & (over_x <= over_y)
+        along_y = clash & ~along_x
+        # ties (same centre) are pushed by index order, so the result stays deterministic
+        sign_x = np.where(dx >= 0, 1.0, -1.0)
+        sign_y = np.where(dy >= 0, 1.0, -1.0)
+        push_x = np.where(along_x, over_x * sign_x / 2, 0.0)
+        push_y = np.where(along_y, over_y * sign_y / 2, 0.0)
+        cx += (push_x.sum(axis=0) - push_x.sum(axis=1)) * movable * 0.5
+        cy += (push_y.sum(axis=0) - push_y.sum(axis=1)) * movable * 0.5
+        cx = np.clip(cx, half_w, np.maximum(half_w, width - half_w))
+        cy = np.clip(cy, half_h, np.maximum(half_h, height - half_h))
+    return {
+        room_id: (float(cx[k] - half_w[k]), float(cy[k] - half_h[k]),
+                  float(rects[k, 2]), float(rects[k, 3]))
+        for k, room_id in enumerate(ids)
+    }
