@@ -165,7 +165,8 @@ class _Watch(Eventhdlr):
                 self.first_solution = now - self.started
             self.primal = self.model.getPrimalbound()
         if self.primal is not None and event.getType() in (SCIP_EVENTTYPE.NODESOLVED, SCIP_EVENTTYPE.BESTSOLFOUND):
-            self.dual = self.model.getDualbound()
+            dual = self.model.getDualbound()
+            self.dual = dual if abs(dual) < self.model.infinity() else None
         if now >= self.hard_deadline and not self.guard_fired:
             self.guard_fired = True
             self.model.interruptSolve()
@@ -273,7 +274,10 @@ def solve(
 
     raw = scip_model.getStatus()
     status = _STATUS.get(raw, "unknown")
-    if status == "interrupted" and watch.guard_fired:
+    if status == "interrupted":
+        if not watch.guard_fired:
+            scip_model.freeProb()
+            raise KeyboardInterrupt  # SCIP caught the user's Ctrl-C: stop the whole compile
         status = "time_limit"
     has_solution = scip_model.getNSols() > 0
     primal = bound = None
@@ -282,6 +286,8 @@ def solve(
         if not feasibility_only:
             primal = scip_model.getPrimalbound()
             bound = scip_model.getDualbound()
+            if abs(bound) >= scip_model.infinity():
+                bound = None  # SCIP's "infinity" (1e20) is a finite float: no bound yet
     gap = relative_gap(primal, bound) if not feasibility_only else None
     first = watch.first_solution
     if has_solution and first is None:
@@ -503,6 +509,9 @@ def improve_by_neighbourhoods(
         scip_model.setParam("limits/time", max(0.05, min(sub_seconds, deadline - time.monotonic())))
         _add_start(interface, scip_model, model, False)
         _optimize(scip_model, watch)
+        if scip_model.getStatus() == "userinterrupt" and not watch.guard_fired:
+            scip_model.freeProb()
+            raise KeyboardInterrupt  # SCIP caught the user's Ctrl-C: stop the whole compile
         # improvements below a tenth of the target gap are noise that would keep the search
         # going without changing the answer
         threshold = max(1e-6, options.gap / 10) * max(1.0, abs(objective))
