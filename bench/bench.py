@@ -183,7 +183,10 @@ def format_row(row: dict, reference_limit: float, skip_reference: bool) -> str:
             if key == "speedup":
                 text += "x"
         cells.append(text.ljust(width) if key == "plan" else text.rjust(width))
-    return " ".join(cells)
+    line = " ".join(cells)
+    if row.get("error"):
+        line += f"\n    {row['error']}"
+    return line
 
 
 def header() -> str:

@@ -676,6 +676,9 @@ def spread_apart(
 
 DEFAULT_SECONDS = 60.0
 
+MAX_STALLS = 3
+"""Rounds without progress after which a seed geometry is given up."""
+
 FREE_RADII = (1.0, 3.0, 6.0, 12.0, 25.0)
 """Metres around a conflict within which pairs get their relation freed, round by round."""
 
@@ -739,6 +742,10 @@ def _repair(
         best_total = min(best_total, total)
         if stalled:
             stalls += 1
+            if stalls > MAX_STALLS:
+                # a local minimum of the stretch: another seed geometry does better than
+                # ever wider (and slower) MIPs around this one
+                return None
         radius = FREE_RADII[min(round_index + stalls, len(FREE_RADII) - 1)]
         blamed = {thing for pair in outcome.stretched for thing in pair}
         if stalls:
@@ -793,14 +800,21 @@ def construct_start(
         deadline = time.monotonic() + DEFAULT_SECONDS
     problem = _Problem.of(spec)
     rng = random.Random(seed)
-    for index, geometry in enumerate(_seed_geometries(spec, rng, randomize)):
-        geometry = _cover_points(spec, geometry)
+    candidates = list(_seed_geometries(spec, rng, randomize))
+    for index, (kind, make_geometry) in enumerate(candidates):
         left = deadline - time.monotonic()
         if left <= 0.05:
             return None
-        # early geometries are the likeliest: they get most of the time, later ones the rest
-        share = left if index >= 3 else left * (0.5, 0.5, 0.7)[index]
-        _debug(f"geometry {index}: {share:.1f}s")
+        geometry = _cover_points(spec, make_geometry())
+        # a hint geometry is the likeliest and is worth a long repair; graph geometries are
+        # many short tries (measured: a fresh spring seed beats a long repair of a stuck one)
+        if index == len(candidates) - 1:
+            share = left
+        elif kind == "hints":
+            share = 0.5 * left
+        else:
+            share = min(left, max(GRAPH_TRY_SECONDS, 0.15 * left))
+        _debug(f"geometry {index} ({kind}): {share:.1f}s")
         rects = _repair(problem, geometry, time.monotonic() + share, seed)
         if rects is not None:
             return rects
@@ -811,17 +825,25 @@ SHRINK_ORDER: tuple[bool | float, ...] = (False, True)
 """Hint geometries in the order tried: the original boxes, then boxes shrunk to target."""
 
 
+GRAPH_TRIES = 12
+"""Spring-embedded seed geometries tried after the hint geometries."""
+
+GRAPH_TRY_SECONDS = 1.5
+"""Least time a graph geometry's repair gets (more when much time is left)."""
+
+
 def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool):
-    """The seed geometries to try, best first (a generator: each is built when needed)."""
-    if not randomize:
-        for shrink in SHRINK_ORDER:
-            geometry = hint_geometry(spec, shrink=shrink)
-            if geometry is not None:
-                yield geometry
-    elif hint_geometry(spec) is not None:
-        yield perturbed_hint_geometry(spec, rng)
-    for _ in range(3):
-        yield construct_geometry(spec, rng)
+    """(kind, maker) of each seed geometry to try, best first; each is built when needed."""
+    has_hints = hint_geometry(spec) is not None
+    makers = []
+    if has_hints and not randomize:
+        makers += [("hints", lambda shrink=shrink: hint_geometry(spec, shrink=shrink))
+                   for shrink in SHRINK_ORDER]
+    elif has_hints:
+        makers.append(("hints", lambda: perturbed_hint_geometry(spec, rng)))
+    # one generator shared by the makers, called in order: the same seed, the same sequence
+    makers += [("graph", lambda: construct_geometry(spec, rng)) for _ in range(GRAPH_TRIES)]
+    return makers
 
 
 def _cover_points(spec: Spec, geometry: dict[str, Rect]) -> dict[str, Rect]:
