@@ -46,6 +46,9 @@ It must return within options.time_limit seconds (its share of the compile's lim
 START_SHARE = 0.5
 """Share of the time limit a start provider may use; SCIP gets the rest and any time left."""
 
+PROBE_SHARE = 0.05
+"""Share of the time limit (at most 5 s) for the presolve-only infeasibility probe."""
+
 POLISH_SHARE = 0.1
 """Share of the time limit for polishing a start with its relations fixed (solve.polish)."""
 
@@ -72,8 +75,8 @@ class CompileResult:
     """A SolveInfo status when there is a layout; else 'infeasible', 'no_layout' (time limit
     without one) or 'verify_failed'."""
     timings: dict[str, float] = field(default_factory=dict)
-    """Seconds per stage: 'start', 'build', 'polish', 'neighbourhoods', 'solve', 'verify',
-    'explain', 'total'."""
+    """Seconds per stage: 'build', 'presolve', 'start', 'polish', 'neighbourhoods', 'solve',
+    'verify', 'explain', 'total'."""
     outcome: SolveOutcome | None = None
 
 
@@ -151,7 +154,20 @@ def compile_spec(
         cycles = _cycles_compiler()
         if cycles is not None:
             return cycles(spec, options, progress=progress)
+    t0 = time.monotonic()
+    model = build_model(spec, formulation=formulation)
+    timings["build"] = time.monotonic() - t0
     if options.strategy != "thesis" and rects_start is None:
+        # SCIP's presolve alone proves typical conflicts infeasible in milliseconds (about a
+        # second at 100 rooms); without this probe the construction would spend its whole
+        # share of the time limit on a spec that has no layout
+        t0 = time.monotonic()
+        probe = solve(model, replace(options, time_limit=max(0.5, min(5.0, PROBE_SHARE * options.time_limit)),
+                                     node_limit=0, solution_limit=None, emphasis="default", quiet=True),
+                      feasibility_only=True)
+        timings["presolve"] = time.monotonic() - t0
+        if probe.status == "infeasible":
+            return _no_layout(spec, options, probe, [], explain_infeasible, timings, began)
         provider = start_provider or default_start_provider
         share = replace(options, time_limit=max(0.1, START_SHARE * options.time_limit))
         t0 = time.monotonic()
@@ -165,9 +181,6 @@ def compile_spec(
         else:
             method = "construction"
 
-    t0 = time.monotonic()
-    model = build_model(spec, formulation=formulation)
-    timings["build"] = time.monotonic() - t0
     polished: dict[str, Rect] | None = None
     if rects_start is not None:
         warm_start_from_rects(model, spec, rects_start)
@@ -256,6 +269,12 @@ def compile_spec(
         timings["total"] = time.monotonic() - began
         return CompileResult(best[1], [], best[2], timings, outcome)
 
+    return _no_layout(spec, options, outcome, failures, explain_infeasible, timings, began)
+
+
+def _no_layout(spec: Spec, options: SolveOptions, outcome: SolveOutcome, failures: list, explain_infeasible: bool,
+               timings: dict[str, float], began: float) -> CompileResult:
+    """The CompileResult without a layout: E903 (verification), E901/E904 (infeasible), E902."""
     if failures:
         diagnostics = [explain.verification_failed(spec, failures[0])]
         status = "verify_failed"
@@ -263,7 +282,8 @@ def compile_spec(
         status = "infeasible"
         t0 = time.monotonic()
         diagnostics = (
-            explain.explain_infeasibility(spec, options) if explain_infeasible else [explain.infeasible_without_explanation(spec)]
+            explain.explain_infeasibility(spec, options) if explain_infeasible
+            else [explain.infeasible_without_explanation(spec)]
         )
         timings["explain"] = time.monotonic() - t0
     else:

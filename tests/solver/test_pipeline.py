@@ -64,7 +64,7 @@ def _without_timing(layout_json: str) -> dict:
 @pytest.mark.parametrize("strategy, provider", [("auto", None), ("auto", _no_start), ("thesis", None)],
                          ids=["construction+scip", "scip", "thesis"])
 def test_same_spec_and_seed_give_identical_layouts(strategy, provider):
-    options = SolveOptions(time_limit=60, gap=0.02, node_limit=100, seed=3, quiet=True, strategy=strategy)
+    options = SolveOptions(time_limit=60, gap=0.02, node_limit=30, seed=3, quiet=True, strategy=strategy)
     first = compile_spec(FIVE, options, start_provider=provider)
     second = compile_spec(FIVE, options, start_provider=provider)
     assert first.layout is not None and second.layout is not None
@@ -76,7 +76,8 @@ def test_planted_start_is_accepted_and_never_worsened():
     assert verify(FIVE, layout_from_rects(FIVE, FIVE_RECTS)) == []
     model = build_model(FIVE)
     assert warm_start_from_rects(model, FIVE, FIVE_RECTS) == []
-    outcome = solve(model, SolveOptions(time_limit=10, node_limit=1, quiet=True), warm_start=True)
+    outcome = solve(model, SolveOptions(time_limit=10, node_limit=1, emphasis="easycip", quiet=True),
+                    warm_start=True)
     assert outcome.start_accepted is True and outcome.has_solution
     solved = rects_from_model(model)
     assert objective_of_rects(FIVE, solved) <= objective_of_rects(FIVE, FIVE_RECTS) + 1e-6
@@ -90,7 +91,8 @@ def test_warm_start_reports_a_geometry_that_breaks_the_spec():
 
 
 def test_compile_uses_the_start_and_reports_it():
-    result = compile_spec(FIVE, SolveOptions(time_limit=10, node_limit=1, quiet=True), start=FIVE_RECTS)
+    result = compile_spec(FIVE, SolveOptions(time_limit=10, node_limit=1, emphasis="easycip", quiet=True),
+                          start=FIVE_RECTS)
     assert result.layout is not None
     assert result.layout.solve.method == "construction"
     assert verify(FIVE, result.layout) == []
