@@ -836,11 +836,14 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool):
     """(kind, maker) of each seed geometry to try, best first; each is built when needed."""
     has_hints = hint_geometry(spec) is not None
     makers = []
-    if has_hints and not randomize:
+    if has_hints and randomize:
+        makers.append(("hints", lambda: perturbed_hint_geometry(spec, rng)))
+    if has_hints:
+        # for variants too: a variant that cannot keep a perturbed geometry still differs
+        # by its seed and its entrance, and the plain hints repair far more reliably than
+        # graph geometries on large plans
         makers += [("hints", lambda shrink=shrink: hint_geometry(spec, shrink=shrink))
                    for shrink in SHRINK_ORDER]
-    elif has_hints:
-        makers.append(("hints", lambda: perturbed_hint_geometry(spec, rng)))
     # one generator shared by the makers, called in order: the same seed, the same sequence
     makers += [("graph", lambda: construct_geometry(spec, rng)) for _ in range(GRAPH_TRIES)]
     return makers
@@ -865,18 +868,24 @@ def _cover_points(spec: Spec, geometry: dict[str, Rect]) -> dict[str, Rect]:
     return moved
 
 
+PERTURBATION = 0.25
+"""Largest move of a hint box in a variant's seed geometry, as a fraction of its size."""
+
+
 def perturbed_hint_geometry(spec: Spec, rng: random.Random) -> dict[str, Rect]:
-    """The hints' boxes, each moved by up to half its size: a variant's seed geometry.
+    """The hints' boxes, each moved by up to PERTURBATION of its size: a variant's seed.
 
     Rooms that were side by side may now be one above the other, so the repair settles on
     other relations and the variant differs, while the plan's overall shape stays.
+    Measured on school_hendersonhighschool (62 rooms): moves of half a room size left the
+    repair stuck for every seed; a quarter repairs in < 1 s for most seeds.
     """
     geometry = hint_geometry(spec, shrink=False)
     assert geometry is not None
     moved: dict[str, Rect] = {}
     for room_id, (x, y, w, h) in geometry.items():
-        dx = rng.uniform(-0.5, 0.5) * w
-        dy = rng.uniform(-0.5, 0.5) * h
+        dx = rng.uniform(-PERTURBATION, PERTURBATION) * w
+        dy = rng.uniform(-PERTURBATION, PERTURBATION) * h
         moved[room_id] = (x + dx, y + dy, w, h)
     return moved
 
