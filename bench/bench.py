@@ -161,8 +161,10 @@ COLUMNS = (
     ("objective", 10, "{:.1f}"), ("gap", 6, "{:.3f}"), ("area_ratio", 6, "{:.3f}"),
     ("size_deviation", 6, "{:.3f}"), ("reference_first", 8, "{:.1f}"), ("speedup", 8, "{}"),
 )
-HEADERS = {"first": "first s", "seconds": "total s", "area_ratio": "area", "size_deviation": "maxdev",
-           "reference_first": "thesis s", "speedup": "ratio"}
+HEADERS = {
+    "first": "first s", "seconds": "total s", "area_ratio": "area", "size_deviation": "maxdev",
+    "reference_first": "thesis s", "speedup": "ratio",
+}
 
 
 def format_row(row: dict, reference_limit: float, skip_reference: bool) -> str:
@@ -236,7 +238,8 @@ def main(argv: list[str] | None = None) -> int:
                  reference_limit=args.reference_time_limit, only=args.only,
                  skip_reference=args.skip_reference, seed=args.seed, log=log)
     if args.json:
-        text = json.dumps({"rows": rows, "summary": summary(rows, args.time_limit)}, indent=2) + "\n"
+        report = {"rows": rows, "summary": summary(rows, args.time_limit)}
+        text = json.dumps(report, indent=2) + "\n"
         print(text, end="")
     else:
         lines = [header()] + [format_row(r, args.reference_time_limit, args.skip_reference)

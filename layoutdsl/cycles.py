@@ -43,7 +43,9 @@ def cycle_rank(spec: Spec) -> int:
     return graph.number_of_edges() - graph.number_of_nodes() + nx.number_connected_components(graph)
 
 
-def pick_cycle(spec: Spec, exclude: set[str] = frozenset(), choose: str = "longest") -> list[str] | None:
+def pick_cycle(
+    spec: Spec, exclude: set[str] = frozenset(), choose: str = "longest"
+) -> list[str] | None:
     """A cycle of the minimum cycle basis (without the excluded rooms), or None if none is left.
 
     Ties are broken by the sorted room ids, so the choice is deterministic.
@@ -80,7 +82,9 @@ def subproblem(spec: Spec, cycle: list[str]) -> Spec:
     )
 
 
-def cycle_cluster(cluster_id: str, cycle: list[str], centres: dict[str, tuple[float, float]]) -> Cluster:
+def cycle_cluster(
+    cluster_id: str, cycle: list[str], centres: dict[str, tuple[float, float]]
+) -> Cluster:
     """The cycle rooms' centres as a cluster, normalised so min x = min y = 0 (Figure 5.8)."""
     min_x = min(centres[room][0] for room in cycle)
     min_y = min(centres[room][1] for room in cycle)

@@ -193,7 +193,9 @@ def compile_variants(
     return VariantsResult(layouts, diversity(found), paths, positions)
 
 
-def _write(spec: Spec, layouts: list[Layout | None], outdir: Path, formats, robot_room) -> list[Path]:
+def _write(
+    spec: Spec, layouts: list[Layout | None], outdir: Path, formats, robot_room
+) -> list[Path]:
     """NAME-k.layout.json plus the emitters' files for each variant that has a layout."""
     from layoutdsl.atomic import write_text_atomic
     from layoutdsl.emit import DEFAULT_FORMATS, write_outputs
