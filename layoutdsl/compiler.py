@@ -15,7 +15,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
 
-from layoutdsl import explain
+from layoutdsl import cycles, explain
 from layoutdsl.ast import Spec
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
@@ -130,8 +130,10 @@ def compile_spec(
     strategy 'auto': a first feasible layout from `start`, else from `start_provider` (by
     default the construction of issue 6), handed to SCIP as its start for polishing; without
     a start, SCIP alone. The start itself is the answer if SCIP finds nothing better in time.
-    strategy 'cycles': `layoutdsl.cycles.compile_with_cycles(spec, options, progress=...)`
-    (issue 6) when that module exists, else the same as 'auto'.
+    When the construction finds no start and the room graph has cycles, 'auto' spends the
+    time left on cycle decomposition (unless options.cycles_fallback is off).
+    strategy 'cycles': `layoutdsl.cycles.compile_with_cycles(spec, options, progress=...)`,
+    decomposition from the start (§5.5.3).
     """
     began = time.monotonic()
     deadline = began + options.time_limit
@@ -151,9 +153,7 @@ def compile_spec(
         formulation = THESIS_AS_WRITTEN
         rects_start = None
     elif options.strategy == "cycles":
-        cycles = _cycles_compiler()
-        if cycles is not None:
-            return cycles(spec, options, progress=progress)
+        return cycles.compile_with_cycles(spec, options, progress=progress)
     t0 = time.monotonic()
     model = build_model(spec, formulation=formulation)
     timings["build"] = time.monotonic() - t0
@@ -173,6 +173,12 @@ def compile_spec(
         t0 = time.monotonic()
         rects_start = provider(spec, share)
         timings["start"] = time.monotonic() - t0
+        if rects_start is None and options.cycles_fallback and _has_cycles(spec):
+            # The thesis' remedy when generation finds nothing (§5.5.3). SCIP from scratch,
+            # the alternative, finds no layout from about 20 rooms up (solver scouting), so
+            # the time left is better spent decomposing.
+            left = replace(options, time_limit=max(0.1, deadline - time.monotonic()))
+            return cycles.compile_with_cycles(spec, left, progress=progress)
     if rects_start is not None:
         # a start that fails verification is never handed on as an answer
         start_layout = layout_from_rects(spec, rects_start)
@@ -293,10 +299,6 @@ def _no_layout(spec: Spec, options: SolveOptions, outcome: SolveOutcome, failure
     return CompileResult(None, diagnostics, status, timings, outcome)
 
 
-def _cycles_compiler():
-    """The cycle-decomposition compile of issue 6 (layoutdsl.cycles.compile_with_cycles), if present."""
-    try:
-        from layoutdsl.cycles import compile_with_cycles
-    except ImportError:
-        return None
-    return compile_with_cycles
+def _has_cycles(spec: Spec) -> bool:
+    """Whether the room graph has a cycle (edges > rooms - components)."""
+    return cycles.cycle_rank(spec) > 0

@@ -122,7 +122,8 @@ def compile_with_cycles(
 
     began = time.monotonic()
     deadline = began + options.time_limit
-    auto = replace(options, strategy="auto")
+    # the decomposition's own solves must not fall back to decomposition again
+    auto = replace(options, strategy="auto", cycles_fallback=False)
 
     def remaining() -> float:
         return max(0.1, deadline - time.monotonic())

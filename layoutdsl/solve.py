@@ -64,6 +64,9 @@ class SolveOptions:
     """One of STRATEGIES."""
     formulation: Formulation = field(default_factory=Formulation)
     """Which model improvements over the thesis formulation as written to use."""
+    cycles_fallback: bool = True
+    """auto: when the construction finds no start and the room graph has cycles, spend the
+    time left on cycle decomposition (§5.5.3). Off inside the decomposition's own solves."""
 
     @staticmethod
     def from_settings(settings: Settings, **overrides) -> SolveOptions:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import time
 
+from layoutdsl.compiler import compile_spec
 from layoutdsl.construct import construct_start, rects_to_layout
 from layoutdsl.cycles import (
     compile_with_cycles,
@@ -91,3 +92,23 @@ def test_diversity_of_identical_layouts_is_zero():
     spec = cycle_spec()
     layout = rects_to_layout(spec, construct_start(spec, deadline=time.monotonic() + 20))
     assert diversity([layout, layout]) == 0.0
+
+
+def test_auto_falls_back_to_cycle_decomposition_when_construction_finds_nothing():
+    # A start provider that fails stands in for a construction that found nothing in time.
+    spec = cycle_spec()
+    result = compile_spec(spec, SolveOptions(time_limit=8, quiet=True),
+                          start_provider=lambda _spec, _options: None)
+    assert result.layout is not None
+    assert result.layout.solve.method.startswith("cycles")
+    assert verify(spec, result.layout) == []
+
+
+def test_auto_without_cycles_falls_back_to_scip_alone():
+    spec = tree_spec()
+    result = compile_spec(spec, SolveOptions(time_limit=8, quiet=True),
+                          start_provider=lambda _spec, _options: None)
+    # nothing to decompose: SCIP alone (a 10-room tree is within its reach)
+    assert result.layout is not None
+    assert result.layout.solve.method == "scip"
+    assert verify(spec, result.layout) == []
