@@ -620,60 +620,6 @@ def hint_geometry(spec: Spec, shrink: bool | float = True) -> dict[str, Rect] | 
     return geometry
 
 
-def spread_apart(
-    geometry: dict[str, Rect],
-    width: float,
-    height: float,
-    walldim: float,
-    *,
-    fixed: set[str] = frozenset(),
-    iterations: int = 300,
-) -> dict[str, Rect]:
-    """Push overlapping rectangles apart (each along its shallower overlap), inside the box.
-
-    A spring embedding ignores the rooms' sizes, so its rectangles pile up; relations read
-    off such a pile are mostly arbitrary. A few hundred rounds of pairwise pushes (numpy,
-    O(n^2) per round: fine for a few hundred rooms) leave a geometry whose relations are
-    nearly right, so the repair has little left to do. Rooms in `fixed` do not move.
-    """
-    import numpy as np
-
-    ids = list(geometry)
-    if len(ids) < 2:
-        return dict(geometry)
-    rects = np.array([geometry[i] for i in ids], dtype=float)
-    half_w, half_h = rects[:, 2] / 2, rects[:, 3] / 2
-    cx, cy = rects[:, 0] + half_w, rects[:, 1] + half_h
-    movable = np.array([0.0 if i in fixed else 1.0 for i in ids])
-    need_x = half_w[:, None] + half_w[None, :] + walldim
-    need_y = half_h[:, None] + half_h[None, :] + walldim
-    upper = np.triu(np.ones((len(ids), len(ids)), dtype=bool), 1)
-    for _ in range(iterations):
-        dx = cx[None, :] - cx[:, None]
-        dy = cy[None, :] - cy[:, None]
-        over_x = need_x - np.abs(dx)
-        over_y = need_y - np.abs(dy)
-        clash = (over_x > 0) & (over_y > 0) & upper
-        if not clash.any():
-            break
-        along_x = clash & (over_x <= over_y)
-        along_y = clash & ~along_x
-        # ties (same centre) are pushed by index order, so the result stays deterministic
-        sign_x = np.where(dx >= 0, 1.0, -1.0)
-        sign_y = np.where(dy >= 0, 1.0, -1.0)
-        push_x = np.where(along_x, over_x * sign_x / 2, 0.0)
-        push_y = np.where(along_y, over_y * sign_y / 2, 0.0)
-        cx += (push_x.sum(axis=0) - push_x.sum(axis=1)) * movable * 0.5
-        cy += (push_y.sum(axis=0) - push_y.sum(axis=1)) * movable * 0.5
-        cx = np.clip(cx, half_w, np.maximum(half_w, width - half_w))
-        cy = np.clip(cy, half_h, np.maximum(half_h, height - half_h))
-    return {
-        room_id: (float(cx[k] - half_w[k]), float(cy[k] - half_h[k]),
-                  float(rects[k, 2]), float(rects[k, 3]))
-        for k, room_id in enumerate(ids)
-    }
-
-
 DEFAULT_SECONDS = 60.0
 
 MAX_STALLS = 3
