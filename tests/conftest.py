@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
+import pytest
+
 
 def pytest_addoption(parser) -> None:
     parser.addoption(
@@ -10,3 +14,27 @@ def pytest_addoption(parser) -> None:
         default=False,
         help="rewrite golden/snapshot files from the current output instead of comparing",
     )
+
+
+SPECS_DIR = Path(__file__).resolve().parents[1] / "specs"
+COMPILE_SECONDS = 4.0
+"""Per spec: enough for the construction and some polishing; the outputs' correctness, not
+their quality, is what the tests that use these layouts check."""
+
+
+@pytest.fixture(scope="session")
+def compiled_spec_layouts() -> dict[str, tuple]:
+    """Every spec in specs/ compiled once per test run: stem -> (spec, verified Layout)."""
+    from layoutdsl.api import load_spec
+    from layoutdsl.compiler import compile_spec
+    from layoutdsl.solve import SolveOptions
+
+    compiled = {}
+    for path in sorted(SPECS_DIR.glob("*.lay")):
+        spec, diagnostics = load_spec(str(path))
+        assert spec is not None, [d.message for d in diagnostics]
+        options = SolveOptions.from_settings(spec.settings, time_limit=COMPILE_SECONDS, quiet=True)
+        result = compile_spec(spec, options)
+        assert result.layout is not None, [d.message for d in result.diagnostics]
+        compiled[path.stem] = (spec, result.layout)
+    return compiled

@@ -212,10 +212,17 @@ def test_a_real_plan_door_near_a_corner_stays_on_the_shared_wall() -> None:
 PLANTED = planted_layouts()
 
 
+@pytest.mark.parametrize("source", ["planted", "compiled"])
 @pytest.mark.parametrize("spec_file", SPEC_FILES, ids=[p.stem for p in SPEC_FILES])
-def test_bitmap_topology_equals_the_specs_adjacency_for_every_spec(spec_file: Path) -> None:
-    assert spec_file.stem in PLANTED, f"no planted layout for {spec_file.name} in bench/planted_specs.py"
-    layout = PLANTED[spec_file.stem]
+def test_bitmap_topology_equals_the_specs_adjacency_for_every_spec(
+    spec_file: Path, source: str, compiled_spec_layouts
+) -> None:
+    """On the verified planted layout and on what `compile` makes of the spec."""
+    if source == "planted":
+        assert spec_file.stem in PLANTED, f"no planted layout for {spec_file.name} in bench/planted_specs.py"
+        layout = PLANTED[spec_file.stem]
+    else:
+        layout = compiled_spec_layouts[spec_file.stem][1]
     edges, _rooms = spec_adjacency(spec_file)
     met = region_meetings(layout, rasterize_layout(layout))
     assert met == set(edges)

@@ -139,9 +139,15 @@ def test_ids_are_deterministic_and_text_is_escaped() -> None:
     assert root.findtext("floor/spaces/space/labels/label") == 'STUDIO "A" & <B>'
 
 
+@pytest.mark.parametrize("source", ["planted", "compiled"])
 @pytest.mark.parametrize("spec_file", SPEC_FILES, ids=[p.stem for p in SPEC_FILES])
-def test_xml_of_every_spec_has_the_specs_graph_labels_and_types(spec_file: Path, tmp_path: Path) -> None:
-    layout = planted_layouts()[spec_file.stem]
+def test_xml_of_every_spec_has_the_specs_graph_labels_and_types(
+    spec_file: Path, source: str, tmp_path: Path, compiled_spec_layouts
+) -> None:
+    if source == "planted":
+        layout = planted_layouts()[spec_file.stem]
+    else:
+        layout = compiled_spec_layouts[spec_file.stem][1]
     edges, rooms = spec_adjacency(spec_file)
     building, _ = read_building(_written(layout, tmp_path))
     assert building is not None
