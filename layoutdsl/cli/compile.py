@@ -8,42 +8,14 @@ written all-or-nothing, and only for a verified layout.
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 from pathlib import Path
 
 from layoutdsl import exitcodes
+from layoutdsl.cli.argtypes import non_negative_float, non_negative_int, positive_float, positive_int
 
 EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
 STRATEGIES = ("auto", "thesis", "cycles")
-
-
-def _positive_float(text: str) -> float:
-    value = float(text)
-    if not math.isfinite(value) or value <= 0:
-        raise argparse.ArgumentTypeError(f"expected a positive number, got {text!r}")
-    return value
-
-
-def _non_negative_float(text: str) -> float:
-    value = float(text)
-    if not math.isfinite(value) or value < 0:
-        raise argparse.ArgumentTypeError(f"expected a number >= 0, got {text!r}")
-    return value
-
-
-def _positive_int(text: str) -> int:
-    value = int(text)
-    if value <= 0:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
-    return value
-
-
-def _non_negative_int(text: str) -> int:
-    value = int(text)
-    if value < 0:
-        raise argparse.ArgumentTypeError(f"expected an integer >= 0, got {text!r}")
-    return value
 
 
 def add_parser(subparsers) -> None:
@@ -64,21 +36,21 @@ def add_parser(subparsers) -> None:
     )
     parser.add_argument("spec", help="spec file (.lay), or - for standard input")
     parser.add_argument("-o", "--output", required=True, metavar="OUTDIR", help="directory for the outputs")
-    parser.add_argument("--time-limit", type=_positive_float, metavar="S",
+    parser.add_argument("--time-limit", type=positive_float, metavar="S",
                         help="wall-clock seconds for the whole solve (setting time_limit)")
-    parser.add_argument("--gap", type=_non_negative_float, metavar="G",
+    parser.add_argument("--gap", type=non_negative_float, metavar="G",
                         help="stop at this relative optimality gap, e.g. 0.01 (setting gap)")
-    parser.add_argument("--seed", type=_non_negative_int, metavar="N", help="random seed (setting seed)")
+    parser.add_argument("--seed", type=non_negative_int, metavar="N", help="random seed (setting seed)")
     parser.add_argument("--emphasis", choices=EMPHASES,
                         help="SCIP emphasis (setting emphasis; default heuristics)")
-    parser.add_argument("--node-limit", type=_positive_int, metavar="N",
+    parser.add_argument("--node-limit", type=positive_int, metavar="N",
                         help="stop after N branch-and-bound nodes: a deterministic stopping rule")
-    parser.add_argument("--solution-limit", type=_positive_int, metavar="N",
+    parser.add_argument("--solution-limit", type=positive_int, metavar="N",
                         help="stop after N improving solutions: a deterministic stopping rule")
     parser.add_argument("--emit", default="xml,png,world,map", metavar="FORMATS",
                         help="comma-separated output formats: xml, png, world, map (default all)")
     parser.add_argument("--robot-room", metavar="ID", help="room the simulated robot starts in")
-    parser.add_argument("--variants", type=_positive_int, metavar="N",
+    parser.add_argument("--variants", type=positive_int, metavar="N",
                         help="write N different verified layouts, NAME-1.* ... NAME-N.*")
     parser.add_argument("--strategy", choices=STRATEGIES, default="auto",
                         help="auto: construct a first layout, then SCIP; thesis: the thesis' "

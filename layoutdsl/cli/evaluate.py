@@ -11,29 +11,10 @@ import sys
 import time
 
 from layoutdsl import exitcodes
+from layoutdsl.cli.argtypes import non_negative_float, positive_float
 from layoutdsl.diagnostics import has_errors
 from layoutdsl.evaluate.explore import ExploreSettings
 from layoutdsl.evaluate.plan import EvaluateOptions
-
-
-def _positive(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not value > 0 or value != value or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"must be a positive number, got {text}")
-    return value
-
-
-def _non_negative(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
-    if not value >= 0 or value == float("inf"):
-        raise argparse.ArgumentTypeError(f"must be zero or positive, got {text}")
-    return value
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
@@ -55,15 +36,15 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     parser.add_argument("generated", nargs="+", metavar="GENERATED.xml", help="generated plans (building XML)")
     parser.add_argument("-o", "--output", required=True, metavar="REPORT_DIR", help="directory for the report")
     parser.add_argument(
-        "--robot-radius", type=_non_negative, default=defaults.robot_radius_m, metavar="M",
+        "--robot-radius", type=non_negative_float, default=defaults.robot_radius_m, metavar="M",
         help=f"robot radius the walls are inflated by (default {defaults.robot_radius_m} m)",
     )  # fmt: skip
     parser.add_argument(
-        "--resolution", type=_positive, default=defaults.resolution_m, metavar="M",
+        "--resolution", type=positive_float, default=defaults.resolution_m, metavar="M",
         help=f"occupancy grid cell size for the paths (default {defaults.resolution_m} m)",
     )  # fmt: skip
     parser.add_argument(
-        "--explore-resolution", type=_positive, default=defaults.explore_resolution_m, metavar="M",
+        "--explore-resolution", type=positive_float, default=defaults.explore_resolution_m, metavar="M",
         help=(
             "cell size of the exploration grid, a whole multiple of --resolution "
             f"(default {defaults.explore_resolution_m} m)"
