@@ -8,7 +8,22 @@ originals and generated plans go through one reader.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+
+ROOM_TYPES = ("R", "C", "E")
+"""The space types the thesis uses; any other `<type>` is read as a generic room R."""
+
+
+def polygon_area(points) -> float:
+    """The area enclosed by a polygon (shoelace), whatever its orientation or closure."""
+    total = 0.0
+    count = len(points)
+    for index in range(count):
+        a = points[index]
+        b = points[(index + 1) % count]
+        total += a.x * b.y - b.x * a.y
+    return abs(total) / 2.0
 
 
 @dataclass(frozen=True, slots=True)
@@ -74,6 +89,26 @@ class Space:
     line: int = 0
     """1-based line of the `<space>` element in its file (0 when unknown), for diagnostics."""
 
+    @property
+    def area(self) -> float:
+        """The polygon's area in file units squared."""
+        return polygon_area(self.polygon)
+
+    @property
+    def rectangularization_ratio(self) -> float:
+        """sqrt(polygon area / bounding-box area) (seed §5.3.1): the factor that turns the
+        bounding box into a rectangle of the room's area. At most 1 (a self-intersecting
+        polygon can claim more than its box; a room never fills more)."""
+        box = self.bbox.width * self.bbox.height
+        if box <= 0 or len(self.polygon) < 3:
+            return 1.0  # no polygon to measure: the box is all there is
+        return min(1.0, math.sqrt(self.area / box))
+
+    @property
+    def spec_type(self) -> str:
+        """The room type of the spec: `<type>` when it is R, C or E, else R."""
+        return self.rtype if self.rtype in ROOM_TYPES else "R"
+
 
 @dataclass(frozen=True, slots=True)
 class Building:
@@ -95,6 +130,17 @@ class Building:
             if space.id == space_id:
                 return space
         raise KeyError(space_id)
+
+    def spec_room_ids(self) -> dict[str, str]:
+        """Space id -> spec room id: type letter and order within the type, in file order
+        (R0, R1, ..., C0, ..., E0, ...; seed §5.7)."""
+        counters: dict[str, int] = {}
+        ids: dict[str, str] = {}
+        for space in self.spaces:
+            number = counters.get(space.spec_type, 0)
+            counters[space.spec_type] = number + 1
+            ids[space.id] = f"{space.spec_type}{number}"
+        return ids
 
     def portal_edges(self) -> dict[frozenset[str], str]:
         """Room pairs joined by at least one portal -> 'EXPLICIT' or 'IMPLICIT'.

@@ -9,15 +9,6 @@ from layoutdsl.building import Building
 from layoutdsl.evaluate.topology import room_ids
 
 
-def _shoelace(points) -> float:
-    total = 0.0
-    n = len(points)
-    for i in range(n):
-        a, b = points[i], points[(i + 1) % n]
-        total += a.x * b.y - b.x * a.y
-    return abs(total) / 2.0
-
-
 @dataclass(frozen=True, slots=True)
 class PlanAreas:
     """Total room area (sum of room polygons) and the area of the plan's bounding box."""
@@ -31,7 +22,7 @@ class PlanAreas:
 def plan_areas(building: Building) -> PlanAreas:
     """Room and bounding-box areas of a plan in m²."""
     s = building.metres_per_unit
-    room_area = sum(_shoelace(space.polygon) for space in building.spaces if len(space.polygon) >= 3)
+    room_area = sum(space.area for space in building.spaces)
     xs = [p.x for space in building.spaces for p in space.polygon] or [0.0]
     ys = [p.y for space in building.spaces for p in space.polygon] or [0.0]
     width, height = (max(xs) - min(xs)) * s, (max(ys) - min(ys)) * s
@@ -46,11 +37,8 @@ def room_sizes(building: Building) -> dict[str, tuple[float, float]]:
     ids = room_ids(building)
     sizes = {}
     for space in building.spaces:
-        bb = space.bbox
-        box = bb.width * bb.height
-        area = _shoelace(space.polygon) if len(space.polygon) >= 3 else box
-        ratio = math.sqrt(area / box) if box > 0 else 1.0
-        sizes[ids[space.id]] = (bb.width * ratio * s, bb.height * ratio * s)
+        ratio = space.rectangularization_ratio
+        sizes[ids[space.id]] = (space.bbox.width * ratio * s, space.bbox.height * ratio * s)
     return sizes
 
 

@@ -19,19 +19,14 @@ _SPEC_ID = re.compile(r"^([A-Z])(\d+)$")
 
 def room_ids(building: Building) -> dict[str, str]:
     """Space id -> report id: the space's own id when the file already uses spec ids
-    (`R0`, `E1`, ... matching the space type), else type letter + order within that type."""
+    (`R0`, `E1`, ... matching the space type), else the importer's ids: type letter and
+    order within that type (seed §5.7), so report rows name the rooms as the spec does."""
     own = [space.id for space in building.spaces]
     if len(set(own)) == len(own) and all(
         (m := _SPEC_ID.match(space.id)) and m.group(1) == space.rtype for space in building.spaces
     ):
         return {space.id: space.id for space in building.spaces}
-    counters: dict[str, int] = {}
-    ids = {}
-    for space in building.spaces:
-        index = counters.get(space.rtype, 0)
-        counters[space.rtype] = index + 1
-        ids[space.id] = f"{space.rtype}{index}"
-    return ids
+    return building.spec_room_ids()
 
 
 def room_graph(building: Building) -> nx.Graph:

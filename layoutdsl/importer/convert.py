@@ -24,13 +24,12 @@ from dataclasses import dataclass
 from pathlib import PurePath
 
 from layoutdsl.ast import Adjacency, Boundary, Hint, Room, Settings, Spec
-from layoutdsl.building import Building, Space
+from layoutdsl.building import Building, Space, polygon_area
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.importer import codes
-from layoutdsl.importer.reader import polygon_area
 from layoutdsl.source import Span
 
-# Ids by type and order (seed §5.7): R0, R1, ... then C0, ... and E0, ... in file order.
+# The label a space gets when its <label> is empty.
 _DEFAULT_LABELS = {"R": "ROOM", "C": "CORRIDOR", "E": "ENTRANCE"}
 _DIGITS = 3  # millimetres: fine enough for Figure 4.2's centimetres, coarse enough to read
 
@@ -102,14 +101,7 @@ def original_room_area(building: Building) -> float:
 
 def room_ids(building: Building) -> dict[str, str]:
     """Space id -> spec room id (R0, C0, E0, ... by type, in file order; seed §5.7)."""
-    counters: dict[str, int] = {}
-    ids: dict[str, str] = {}
-    for space in building.spaces:
-        rtype = space.rtype if space.rtype in _DEFAULT_LABELS else "R"
-        number = counters.get(rtype, 0)
-        counters[rtype] = number + 1
-        ids[space.id] = f"{rtype}{number}"
-    return ids
+    return building.spec_room_ids()
 
 
 def spec_name(building: Building) -> str:
@@ -199,10 +191,8 @@ def convert(
         room_id = ids[space.id]
         bbox_w = space.bbox.width * mpu
         bbox_h = space.bbox.height * mpu
-        area = polygon_area(space.polygon) * mpu * mpu
-        # A self-intersecting polygon can claim more than its box; a room never fills more.
-        ratio = min(1.0, math.sqrt(area / (bbox_w * bbox_h)))
-        rtype = space.rtype if space.rtype in _DEFAULT_LABELS else "R"
+        ratio = space.rectangularization_ratio
+        rtype = space.spec_type
         var_plus = options.var_corridor if rtype == "C" else options.var_plus
         var_minus = options.var_corridor if rtype == "C" else options.var_minus
 

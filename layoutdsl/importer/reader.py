@@ -23,7 +23,7 @@ from xml.etree.ElementTree import Element
 from defusedxml import DefusedXmlException, DTDForbidden, EntitiesForbidden
 from defusedxml.ElementTree import DefusedXMLParser, ParseError
 
-from layoutdsl.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space
+from layoutdsl.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space, polygon_area
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.importer import codes
 from layoutdsl.source import Span
@@ -492,17 +492,6 @@ class _Reader:
                             label="no `<space>` has this id",
                             help=f"did you mean `{suggestion}`?" if suggestion else None,
                         )
-
-
-def polygon_area(points) -> float:
-    """The area enclosed by a polygon (shoelace), whatever its orientation or closure."""
-    total = 0.0
-    count = len(points)
-    for index in range(count):
-        a = points[index]
-        b = points[(index + 1) % count]
-        total += a.x * b.y - b.x * a.y
-    return abs(total) / 2.0
 
 
 def source_lines(text: str) -> list[str]:
