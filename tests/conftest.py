@@ -17,9 +17,11 @@ def pytest_addoption(parser) -> None:
 
 
 SPECS_DIR = Path(__file__).resolve().parents[1] / "specs"
-COMPILE_SECONDS = 4.0
-"""Per spec: enough for the construction and some polishing; the outputs' correctness, not
-their quality, is what the tests that use these layouts check."""
+COMPILE_SECONDS = 8.0
+"""Per spec. The construction gets half of it; its first layout takes 0.1-3 s on an idle
+machine, so 8 s leaves room for a loaded CI box. The tests that use these layouts check the
+outputs' correctness, not their quality, so the time-limited (non-deterministic) polish is
+harmless."""
 
 
 @pytest.fixture(scope="session")
