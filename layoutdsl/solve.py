@@ -346,10 +346,18 @@ def _configure(scip_model, options: SolveOptions, *, remaining: float) -> None:
         scip_model.setParam("limits/solutions", int(options.solution_limit))
 
 
-def _add_start(interface: ScipDirect, scip_model, model: pyo.ConcreteModel, feasibility_only: bool) -> bool:
-    """Hand the values on the Pyomo variables to SCIP; True when SCIP finds them feasible."""
+def _add_start(interface: ScipDirect, scip_model, model: pyo.ConcreteModel, feasibility_only: bool,
+               *, partial_fallback: bool = True) -> bool:
+    """Hand the values on the Pyomo variables to SCIP; True when SCIP finds them feasible.
+
+    Without `partial_fallback`, a start SCIP rejects is dropped rather than offered as a
+    partial solution: a SCIP model re-solved many times (the neighbourhood search) keeps its
+    partial solutions across rounds and refuses more than limits/maxorigsol of them.
+    """
     var_map = interface._pyomo_var_to_solver_var_map
     full = _has_full_start(model)
+    if not full and not partial_fallback:
+        return False
     sol = scip_model.createSol() if full else scip_model.createPartialSol()
     for pyomo_var, scip_var in var_map.items():
         if pyomo_var.value is None or (not full and not pyomo_var.is_integer()):
@@ -370,6 +378,9 @@ def _add_start(interface: ScipDirect, scip_model, model: pyo.ConcreteModel, feas
     if feasible:
         scip_model.addSol(sol, free=True)
         return True
+    if not partial_fallback:
+        scip_model.freeSol(sol)
+        return False
     # An inexact start still helps: SCIP repairs partial starts with its completion heuristic
     partial = scip_model.createPartialSol()
     for pyomo_var, scip_var in var_map.items():
@@ -510,7 +521,7 @@ def improve_by_neighbourhoods(
                     scip_model.chgVarLb(scip_var, var.value)
                     scip_model.chgVarUb(scip_var, var.value)
         scip_model.setParam("limits/time", max(0.05, min(sub_seconds, deadline - time.monotonic())))
-        _add_start(interface, scip_model, model, False)
+        _add_start(interface, scip_model, model, False, partial_fallback=False)
         _optimize(scip_model, watch)
         if scip_model.getStatus() == "userinterrupt" and not watch.guard_fired:
             scip_model.freeProb()

@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import math
 
+import pyomo.environ as pyo
 import pytest
 
 from layoutdsl.ast import Settings
 from layoutdsl.model import build_model
-from layoutdsl.solve import SolveOptions, relative_gap, solve
+from layoutdsl.solve import SolveOptions, _add_start, _translate, relative_gap, solve
 
+from ._cases import room, spec
 from ._planted import planted
 
 
@@ -50,3 +52,23 @@ def test_quiet_solves_report_nothing(capsys):
     spec, _ = planted(2, 1)
     solve(build_model(spec), SolveOptions(time_limit=1, quiet=True))
     assert capsys.readouterr().err == ""
+
+
+def test_a_rejected_start_offered_to_one_scip_model_many_times_is_dropped_not_stored():
+    # The neighbourhood search re-solves one SCIP model every round. Offering a start SCIP
+    # rejects as a partial solution each round used to exhaust limits/maxorigsol (10) and
+    # crash a 43-room compile; without the fallback such a start is simply not offered.
+    two = spec("two", [room("A", (2, 3, 2.5), (2, 3, 2.5)), room("B", (2, 3, 2.5), (2, 3, 2.5))], 8, 8)
+    model = build_model(two)
+    for var in model.component_data_objects(ctype=pyo.Var):
+        var.set_value(var.lb if var.lb is not None else 0, skip_validation=True)
+    for r in ("A", "B"):  # both rooms on the same spot: the start violates non-overlap
+        model.x[r].set_value(0)
+        model.y[r].set_value(0)
+        model.w[r].set_value(2.5)
+        model.h[r].set_value(2.5)
+    interface, scip_model, _loader = _translate(model)
+    for _ in range(15):
+        scip_model.freeTransform()
+        assert _add_start(interface, scip_model, model, False, partial_fallback=False) is False
+    scip_model.freeProb()
