@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
 from layoutdsl import __version__, exitcodes
@@ -57,6 +58,16 @@ def main(argv: list[str] | None = None) -> int:
         print("layoutdsl: interrupted", file=sys.stderr)
         return exitcodes.USAGE
     except BrokenPipeError:
+        return exitcodes.USAGE
+    except Exception as error:  # a bug in layoutdsl, not a problem of the input
+        if os.environ.get("LAYOUTDSL_TRACEBACK"):
+            raise
+        print(
+            f"layoutdsl: internal error: {type(error).__name__}: {error}\n"
+            "  this is a bug in layoutdsl, not in your input; nothing was written.\n"
+            "  set LAYOUTDSL_TRACEBACK=1 to see where it happened, and please report it",
+            file=sys.stderr,
+        )
         return exitcodes.USAGE
 
 

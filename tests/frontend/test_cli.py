@@ -105,3 +105,18 @@ def test_fmt_refuses_a_spec_with_errors(tmp_path: Path) -> None:
     assert result.returncode == 1
     assert "E003" in result.stderr
     assert path.read_text() == "rooms\nR0 4 6\n"  # untouched
+
+
+def test_an_internal_error_is_one_clear_line_and_exit_2(monkeypatch, capsys):
+    from layoutdsl import cli
+    from layoutdsl.cli import lint
+
+    def broken(_args):
+        raise RuntimeError("boom")
+
+    monkeypatch.delenv("LAYOUTDSL_TRACEBACK", raising=False)
+    monkeypatch.setattr(lint, "run", broken)
+    assert cli.main(["lint", "specs/office_small.lay"]) == 2
+    err = capsys.readouterr().err
+    assert "internal error: RuntimeError: boom" in err
+    assert "Traceback" not in err
