@@ -169,15 +169,21 @@ HEADERS = {
 
 def format_row(row: dict, reference_limit: float, skip_reference: bool) -> str:
     cells = []
+    reference_status = str(row.get("reference_status") or "")
+    reference_failure = next(
+        (word for word in ("crashed", "killed", "error") if reference_status.startswith(word)), None
+    )
     for key, width, fmt in COLUMNS:
         value = row.get(key)
         if key in ("reference_first", "speedup") and skip_reference:
             text = "-"
         elif key == "reference_first" and value is None:
-            text = f"none/{reference_limit:g}s" if row.get("reference_status") else "-"
+            # a reference that crashed (SCIP aborts on the thesis formulation, see the solver
+            # scouting notes), was killed or raised found nothing, but not "in 60 s"
+            text = (reference_failure or f"none/{reference_limit:g}s") if row.get("reference_status") else "-"
         elif key == "speedup" and value is None:
             text = f">{reference_limit / max(row.get('first') or 1e-3, 1e-3):.0f}x" if (
-                row.get("reference_status") and row.get("first")) else "-"
+                row.get("reference_status") and row.get("first") and not reference_failure) else "-"
         elif value is None:
             text = "-"
         else:
