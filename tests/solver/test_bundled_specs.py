@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
-from conftest import SPECS_DIR
 from layoutdsl.verify import verify
 
+SPECS_DIR = Path(__file__).resolve().parents[2] / "specs"
 SPEC_NAMES = sorted(path.stem for path in SPECS_DIR.glob("*.lay"))
 
 
