@@ -48,3 +48,18 @@ def test_complete_example_lints_clean_and_is_canonical() -> None:
     assert spec.positions and spec.connections and spec.clusters and spec.hints and spec.boundary.obstacles
     assert any(r.on_boundary for r in spec.rooms) and any(r.rho_cover != 1 for r in spec.rooms)
     assert format_source(source) == example
+
+
+def test_readme_opens_with_two_commands_and_ci_runs_the_second():
+    root = Path(__file__).resolve().parents[2]
+    readme = (root / "README.md").read_text(encoding="utf-8")
+    quick_start = readme.split("## Quick start", 1)[1]
+    block = quick_start.split("```", 2)[1].strip().splitlines()
+    assert len(block) == 2
+    setup_and_compile, setup_and_test = block
+    assert setup_and_compile.startswith("python3 -m venv .venv && ")
+    spec = setup_and_compile.split("layoutdsl compile ", 1)[1].split()[0]
+    assert (root / spec).is_file()
+    assert setup_and_test.startswith("python3 -m venv .venv && ")
+    ci_lines = (root / ".ci" / "run").read_text(encoding="utf-8").strip().splitlines()
+    assert ci_lines[-1] == setup_and_test
