@@ -551,44 +551,20 @@ def _covers(rect: Rect, px: float, py: float) -> bool:
 
 def rects_to_layout(spec: Spec, rects: dict[str, Rect]):
     """A Layout (with portals) of the rectangles, for the verifier and the emitters."""
-    from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, make_portal
+    # the compiler's conversion, so a start is judged exactly as a compiled layout is
+    from layoutdsl.compiler import layout_from_rects
 
-    assert spec.boundary is not None
-    placed = {
-        room.id: PlacedRoom(room.id, room.label, room.rtype, *rects[room.id])
-        for room in spec.rooms
-    }
-    portals = tuple(
-        make_portal(placed[adj.a], placed[adj.b], adj.kind, adj.door) for adj in spec.adjacencies
-    )
-    obstacles = tuple(
-        PlacedObstacle(ob.id, ob.x, ob.y, ob.w, ob.h) for ob in spec.boundary.obstacles
-    )
-    return Layout(
-        name=spec.name,
-        width=spec.boundary.w,
-        height=spec.boundary.h,
-        walldim=spec.settings.walldim,
-        rooms=tuple(placed[room.id] for room in spec.rooms),
-        portals=portals,
-        obstacles=obstacles,
-    )
+    return layout_from_rects(spec, rects)
 
 
 def check_start(spec: Spec, rects: dict[str, Rect]) -> list[str]:
-    """Violations of the rectangles: our own check, then the project's verifier if present."""
+    """Violations of the rectangles: our own check, then the project's verifier."""
     problems = hard_violations(spec, rects)
     if problems:
         return problems
-    try:
-        from layoutdsl.verify import verify
-    except ImportError:  # the verifier lands in parallel; our own check stands in meanwhile
-        return []
-    try:
-        layout = rects_to_layout(spec, rects)
-    except ValueError as error:
-        return [str(error)]
-    return [str(violation) for violation in verify(spec, layout)]
+    from layoutdsl.verify import verify
+
+    return [violation.message for violation in verify(spec, rects_to_layout(spec, rects))]
 
 
 # ---------------------------------------------------------------------------------------
