@@ -16,6 +16,25 @@ def pytest_addoption(parser) -> None:
     )
 
 
+@pytest.fixture
+def golden(request):
+    """golden(path, actual): `actual` must equal the golden file at `path`.
+
+    Under `pytest --update-goldens` the file is (re)written instead. A missing golden file
+    fails: a snapshot is only ever created on purpose.
+    """
+    update = request.config.getoption("--update-goldens")
+
+    def compare(path: Path, actual: str) -> None:
+        if update:
+            path.write_text(actual, encoding="utf-8")
+            return
+        assert path.exists(), f"missing golden file {path}; run pytest --update-goldens to create it"
+        assert actual == path.read_text(encoding="utf-8"), f"{path} differs (pytest --update-goldens accepts it)"
+
+    return compare
+
+
 SPECS_DIR = Path(__file__).resolve().parents[1] / "specs"
 COMPILE_SECONDS = 8.0
 """Per spec. The construction gets half of it; its first layout takes 0.1-3 s on an idle

@@ -16,31 +16,22 @@ from layoutdsl.emit import png, stage, xml
 from layoutdsl.raster import rasterize_layout
 
 
-def _check(path: Path, actual: str, update: bool) -> None:
-    if update or not path.exists():
-        if not update:
-            pytest.fail(f"missing golden {path}; run pytest --update-goldens to create it")
-        path.write_text(actual, encoding="utf-8")
-        return
-    assert actual == path.read_text(encoding="utf-8"), f"{path} differs (pytest --update-goldens to accept)"
+@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
+def test_building_xml_matches_golden(case: Path, golden) -> None:
+    golden(case / "expected.xml", xml.render_xml(load_case(case)))
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
-def test_building_xml_matches_golden(case: Path, update_goldens: bool) -> None:
-    _check(case / "expected.xml", xml.render_xml(load_case(case)), update_goldens)
-
-
-@pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
-def test_stage_world_matches_golden(case: Path, update_goldens: bool) -> None:
+def test_stage_world_matches_golden(case: Path, golden) -> None:
     layout = load_case(case)
     world = stage.render_world(layout, rasterize_layout(layout), case.name)
-    _check(case / "expected.world", world, update_goldens)
+    golden(case / "expected.world", world)
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])
-def test_drawing_list_matches_golden(case: Path, update_goldens: bool) -> None:
+def test_drawing_list_matches_golden(case: Path, golden) -> None:
     data = png.drawing(load_case(case)).to_data()
-    _check(case / "expected.png.json", json.dumps(data, indent=1) + "\n", update_goldens)
+    golden(case / "expected.png.json", json.dumps(data, indent=1) + "\n")
 
 
 def test_there_are_golden_cases() -> None:

@@ -30,14 +30,8 @@ def test_there_are_at_least_thirty_bad_specs() -> None:
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.stem for c in CASES])
-def test_snapshot(case: Path, monkeypatch, capsys, request) -> None:
-    actual = lint_output(case, monkeypatch, capsys)
-    snapshot = case.with_suffix(".txt")
-    if request.config.getoption("--update-goldens"):
-        snapshot.write_text(actual, encoding="utf-8")
-        return
-    assert snapshot.exists(), f"no snapshot for {case.name}; run pytest --update-goldens"
-    assert actual == snapshot.read_text(encoding="utf-8")
+def test_snapshot(case: Path, monkeypatch, capsys, golden) -> None:
+    golden(case.with_suffix(".txt"), lint_output(case, monkeypatch, capsys))
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.stem for c in CASES])

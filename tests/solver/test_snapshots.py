@@ -9,7 +9,6 @@ pass --update-goldens when the suite defines it) to rewrite the snapshots.
 
 from __future__ import annotations
 
-import os
 import subprocess
 import sys
 from pathlib import Path
@@ -25,15 +24,6 @@ from layoutdsl.verify import verify
 ROOT = Path(__file__).resolve().parents[2]
 SNAPSHOTS = Path("tests/diagnostics/solve")
 SPECS = sorted((ROOT / SNAPSHOTS).glob("*.lay"))
-
-
-def _update_goldens(request) -> bool:
-    try:
-        if request.config.getoption("--update-goldens"):
-            return True
-    except ValueError:
-        pass
-    return os.environ.get("LAYOUTDSL_UPDATE_GOLDENS") == "1"
 
 
 def _compile_args(path: Path) -> list[str]:
@@ -60,14 +50,10 @@ def _run(relative: Path, tmp_path: Path) -> tuple[int, str]:
 
 
 @pytest.mark.parametrize("path", SPECS, ids=[p.stem for p in SPECS])
-def test_solver_diagnostic_snapshot(path: Path, tmp_path: Path, request):
+def test_solver_diagnostic_snapshot(path: Path, tmp_path: Path, golden):
     relative = SNAPSHOTS / path.name
     code, stderr = _run(relative, tmp_path)
-    actual = f"exit {code}\n---\n{stderr}"
-    snap = path.with_suffix(".snap")
-    if _update_goldens(request) or not snap.exists():
-        snap.write_text(actual)
-    assert actual == snap.read_text()
+    golden(path.with_suffix(".snap"), f"exit {code}\n---\n{stderr}")
     assert code == exitcodes.NO_LAYOUT
     assert not any(tmp_path.iterdir()), "no output may be written without a layout"
 

@@ -28,15 +28,10 @@ def import_output(case: Path, out: Path, monkeypatch, capsys) -> str:
 
 
 @pytest.mark.parametrize("case", CASES, ids=[case.stem for case in CASES])
-def test_snapshot(case: Path, tmp_path: Path, monkeypatch, capsys, request):
+def test_snapshot(case: Path, tmp_path: Path, monkeypatch, capsys, golden):
     out = tmp_path / "out.lay"
     actual = import_output(case, out, monkeypatch, capsys)
-    snapshot = case.with_suffix(".txt")
-    if request.config.getoption("--update-goldens"):
-        snapshot.write_text(actual, encoding="utf-8")
-        return
-    assert snapshot.exists(), f"no snapshot for {case.name}; run pytest --update-goldens"
-    assert actual == snapshot.read_text(encoding="utf-8")
+    golden(case.with_suffix(".txt"), actual)
     code = re.match(r"([EW]\d{3})_", case.name).group(1)
     assert f"[{code}]" in actual, "a case must show the code it is named after"
     # an error writes nothing; a warning still writes the spec
