@@ -708,13 +708,15 @@ def construct_start(
     seed: int = 0,
     deadline: float | None = None,
     randomize: bool = False,
+    use_hints: bool = True,
 ) -> dict[str, Rect] | None:
     """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
 
     `deadline` is a `time.monotonic()` instant (default: 60 s from now). Seed geometries are
-    tried in turn, each with a share of the time left: the hints' boxes, the hints shrunk to
-    the target sizes, then geometries grown from the room graph. `randomize` (variants)
-    perturbs the hints, or draws the graph geometry, from `seed`.
+    tried in turn, each with a share of the time left: the hints' boxes and the hints shrunk
+    to the target sizes (when the spec has hints and `use_hints`), then geometries grown
+    from the room graph (layoutdsl.generate), then spring embeddings. `randomize` (hint-based
+    variants) perturbs the hints from `seed`; the graph geometries are always drawn from it.
     """
     if spec.boundary is None or not spec.rooms:
         return None
@@ -722,18 +724,20 @@ def construct_start(
         deadline = time.monotonic() + DEFAULT_SECONDS
     problem = _Problem.of(spec)
     rng = random.Random(seed)
-    candidates = list(_seed_geometries(spec, rng, randomize))
+    candidates = list(_seed_geometries(spec, rng, randomize, use_hints))
     for index, (kind, make_geometry) in enumerate(candidates):
         left = deadline - time.monotonic()
         if left <= 0.05:
             return None
         geometry = _cover_points(spec, make_geometry())
         # a hint geometry is the likeliest and is worth a long repair; graph geometries are
-        # many short tries (measured: a fresh spring seed beats a long repair of a stuck one)
+        # many short tries (measured: a fresh draw beats a long repair of a stuck one)
         if index == len(candidates) - 1:
             share = left
         elif kind == "hints":
             share = 0.5 * left
+        elif kind == "generated":
+            share = min(left, max(GENERATED_TRY_SECONDS, GENERATED_TRY_SHARE * left))
         else:
             share = min(left, max(GRAPH_TRY_SECONDS, 0.15 * left))
         _debug(f"geometry {index} ({kind}): {share:.1f}s")
@@ -747,16 +751,27 @@ SHRINK_ORDER: tuple[bool | float, ...] = (False, True)
 """Hint geometries in the order tried: the original boxes, then boxes shrunk to target."""
 
 
-GRAPH_TRIES = 12
-"""Spring-embedded seed geometries tried after the hint geometries."""
+GENERATED_TRIES = 12
+"""Greedy contact placements (layoutdsl.generate) tried after the hint geometries."""
+
+GENERATED_TRY_SECONDS = 6.0
+"""Least time the repair of one generated geometry gets."""
+
+GENERATED_TRY_SHARE = 0.35
+"""Share of the time left the repair of one generated geometry gets, when that is more."""
+
+GRAPH_TRIES = 4
+"""Spring-embedded seed geometries tried last (the fallback before generate existed)."""
 
 GRAPH_TRY_SECONDS = 1.5
 """Least time a graph geometry's repair gets (more when much time is left)."""
 
 
-def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool):
+def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints: bool = True):
     """(kind, maker) of each seed geometry to try, best first; each is built when needed."""
-    has_hints = hint_geometry(spec) is not None
+    from layoutdsl.generate import generate_geometry
+
+    has_hints = use_hints and hint_geometry(spec) is not None
     makers = []
     if has_hints and randomize:
         makers.append(("hints", lambda: perturbed_hint_geometry(spec, rng)))
@@ -767,6 +782,7 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool):
         makers += [("hints", lambda shrink=shrink: hint_geometry(spec, shrink=shrink))
                    for shrink in SHRINK_ORDER]
     # one generator shared by the makers, called in order: the same seed, the same sequence
+    makers += [("generated", lambda: generate_geometry(spec, rng)) for _ in range(GENERATED_TRIES)]
     makers += [("graph", lambda: construct_geometry(spec, rng)) for _ in range(GRAPH_TRIES)]
     return makers
 
