@@ -291,11 +291,86 @@ def generate_geometry(spec: Spec, rng: random.Random, *, shrink: float | None = 
         put(room_id, _best_place(room_id, placement, sides[room_id], neighbours[room_id],
                                  walls, geometry, on_boundary[room_id], rng, own_depth,
                                  np.array(foreign).reshape(-1, 4)))
-    # where a room found no free side, push the overlaps apart: the relations read off the
-    # geometry then agree with a real layout, and the repair only has contacts to restore
-    from layoutdsl.construct import spread_apart
+    fixed = set(_fixed_points(spec))
+    for _ in range(REPLACE_PASSES):
+        if not _replace_worst(geometry, placement, sides, neighbours, walls, on_boundary, fixed):
+            break
+    return geometry
 
-    return geometry  # SPREAD
+
+REPLACE_PASSES = 4
+"""Rip-up-and-replace passes over the rooms the greedy pass left overlapping."""
+
+
+def _room_defects(geometry: dict[str, Rect], placement: _Placement,
+                  neighbours: dict[str, list[str]], walls: dict[frozenset[str], float]) -> dict[str, float]:
+    """Per room: its overlap (m², walls included), area outside, and contact shortfalls."""
+    rects = placement.rects
+    defects = {}
+    for index, room_id in enumerate(placement.ids):
+        others = np.delete(placement.blockers, _blocker_index(placement, index), axis=0)
+        cand = rects[index:index + 1]
+        value = OVERLAP_WEIGHT * (_overlap_area(cand, others, placement.walldim - 1e-9)[0]
+                                  + _outside_area(cand, placement.width, placement.height)[0])
+        for n in neighbours[room_id]:
+            value += CONTACT_WEIGHT * _contact_shortfall(
+                cand, np.array(geometry[n]), placement.walldim, walls[frozenset((room_id, n))])[0]
+        defects[room_id] = float(value)
+    return defects
+
+
+def _blocker_index(placement: _Placement, room_index: int) -> int:
+    """Row of the room in placement.blockers (obstacles come first there)."""
+    return len(placement.blockers) - len(placement.rects) + room_index
+
+
+def _replace_worst(geometry, placement: _Placement, sides, neighbours, walls, on_boundary,
+                   fixed: set[str]) -> bool:
+    """Take out each room with a defect, worst first, and put it back where it scores best
+    with all its neighbours placed (either orientation, any neighbour's side); True when
+    some room moved. The greedy pass placed it knowing only the rooms before it."""
+    defects = _room_defects(geometry, placement, neighbours, walls)
+    moved = False
+    for room_id in sorted(defects, key=lambda r: -defects[r]):
+        if defects[room_id] <= 1e-6 or room_id in fixed:
+            continue
+        index = placement.ids.index(room_id)
+        row = _blocker_index(placement, index)
+        others = np.delete(placement.blockers, row, axis=0)
+        long_side, short_side = sides[room_id]
+        blocks = [placement.rects[index:index + 1]]
+        for w, h in ((long_side, short_side), (short_side, long_side)):
+            for n in neighbours[room_id]:
+                blocks.append(_side_candidates(np.array(geometry[n]), w, h, placement.walldim,
+                                               walls[frozenset((room_id, n))], others, _NO_DRAW))
+        cands = np.vstack(blocks)
+        score = OVERLAP_WEIGHT * (_overlap_area(cands, others, placement.walldim - 1e-9)
+                                  + _outside_area(cands, placement.width, placement.height))
+        for n in neighbours[room_id]:
+            score += CONTACT_WEIGHT * _contact_shortfall(
+                cands, np.array(geometry[n]), placement.walldim, walls[frozenset((room_id, n))])
+        if on_boundary[room_id]:
+            score += BOUNDARY_WEIGHT * _boundary_distance(cands, placement.width, placement.height)
+        best = int(np.argmin(score))
+        if best == 0 or score[best] >= score[0] - 1e-6:
+            continue
+        rect = tuple(float(v) for v in cands[best])
+        geometry[room_id] = rect
+        placement.rects[index] = rect
+        placement.blockers[row] = rect
+        moved = True
+    return moved
+
+
+class _MidDraw:
+    """A stand-in for the random generator where the choice must not depend on the seed."""
+
+    @staticmethod
+    def random() -> float:
+        return 0.5
+
+
+_NO_DRAW = _MidDraw()
 
 
 def _halo_depth(size, pending_areas: list[float], sides, room_neighbours) -> float:

@@ -1,7 +1,9 @@
 """`layoutdsl import plan.xml -o plan.lay`: a real floor plan (building XML) -> a spec.
 
-The spec is written in the thesis' intermediate-model format (seed §5.4), plus a `hints`
-section (each room's place in the original plan) unless `--no-hints`. Diagnostics go to
+The spec is written in the thesis' intermediate-model format (the thesis, §5.4): the room
+graph, size bounds and boundary, from which `compile` generates a new arrangement. With
+`--keep-arrangement` it also gets a `hints` section (each room's place in the original
+plan), which compile then starts from, so the layout keeps the original arrangement. Diagnostics go to
 stderr; the output file is written atomically and only when the import succeeded.
 """
 
@@ -30,7 +32,9 @@ def add_parser(subparsers) -> None:
             "Convert a real floor plan in the building XML format into a layout spec:\n"
             "one rectangular room per space (sizes from its polygon, seed §5.3), one\n"
             "adjacency per pair of spaces joined by a portal, the plan's bounding box as\n"
-            "boundary, and each room's original place as a hint for the first layout."
+            "boundary. compile then generates a NEW arrangement of that room graph;\n"
+            "--keep-arrangement also writes each room's original place as a hint, and\n"
+            "compile then starts from (and mostly keeps) the original arrangement."
         ),
         epilog=exitcodes.EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -64,8 +68,13 @@ def add_parser(subparsers) -> None:
         help=f"quadratic weight of the aspect-ratio margin (default {_DEFAULTS.beta})",
     )  # fmt: skip
     parser.add_argument(
+        "--keep-arrangement", dest="hints", action="store_true", default=False,
+        help="write the rooms' places in the original plan as hints: compile starts from "
+        "the original arrangement instead of generating a new one",
+    )  # fmt: skip
+    parser.add_argument(
         "--no-hints", dest="hints", action="store_false",
-        help="leave out the hints section (the rooms' places in the original plan)",
+        help="no hints section (the default; kept for compatibility)",
     )  # fmt: skip
     parser.add_argument(
         "--stdin-filename", metavar="NAME", help="the name messages use for standard input"

@@ -51,8 +51,10 @@ class ImportOptions:
     """α, the linear weight of the aspect-ratio margin."""
     beta: float = 0.2
     """β, the quadratic weight of the aspect-ratio margin (matters for elongated rooms)."""
-    hints: bool = True
-    """Write each room's place in the original plan as a hint for the first layout."""
+    hints: bool = False
+    """Write each room's place in the original plan as a hint for the first layout. Off by
+    default: users import a plan for new buildings with its room graph (issue 11), and a
+    spec's hints are its starting arrangement."""
 
     def __post_init__(self) -> None:
         checks = (

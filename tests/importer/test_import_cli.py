@@ -23,7 +23,7 @@ def _lint_file(path: Path):
 
 def test_writes_a_spec_that_lints_clean_and_reports_on_stderr(tmp_path, capsys):
     out = tmp_path / "lamuniere.lay"
-    assert main(["import", str(LAMUNIERE), "-o", str(out)]) == exitcodes.OK
+    assert main(["import", str(LAMUNIERE), "-o", str(out), "--keep-arrangement"]) == exitcodes.OK
     captured = capsys.readouterr()
     assert captured.out == ""
     assert captured.err == f"imported 8 rooms and 7 adjacencies into `{out}`\n"

@@ -20,7 +20,7 @@ import pytest
 from layoutdsl.api import lint_source
 from layoutdsl.diagnostics import has_errors
 from layoutdsl.format import format_spec
-from layoutdsl.importer import import_building, original_room_area, read_building
+from layoutdsl.importer import ImportOptions, import_building, original_room_area, read_building
 from layoutdsl.source import Source
 
 CORPUS = Path(__file__).parents[2] / ".." / "shared" / "floorplans"
@@ -66,7 +66,7 @@ def test_the_corpus_is_there():
 @pytest.mark.parametrize("plan", PLANS, ids=[plan.stem for plan in PLANS])
 def test_real_plan_imports_lints_clean_and_keeps_its_portal_graph(plan: Path):
     started = time.perf_counter()
-    spec, diagnostics = import_building(plan)
+    spec, diagnostics = import_building(plan, ImportOptions(hints=True))
     elapsed = time.perf_counter() - started
     assert spec is not None and not has_errors(diagnostics), diagnostics
     assert {d.code for d in diagnostics} <= {"W422"}, "real plans only need the mindim repair"

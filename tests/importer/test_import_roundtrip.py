@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from layoutdsl.importer import import_building, read_building, room_ids
+from layoutdsl.importer import ImportOptions, import_building, read_building, room_ids
 from layoutdsl.layout import Layout
 
 EMIT_CASES = sorted(p.parent for p in (Path(__file__).parents[1] / "emit").glob("*/expected.xml"))
@@ -26,7 +26,7 @@ def test_emitted_plan_imports_back_to_its_layout(case: Path):
     layout = Layout.from_json((case / "layout.json").read_text())
     building, diagnostics = read_building(case / "expected.xml")
     assert diagnostics == []
-    spec, diagnostics = import_building(case / "expected.xml")
+    spec, diagnostics = import_building(case / "expected.xml", ImportOptions(hints=True))
     assert spec is not None and not any(d.is_error for d in diagnostics)
     ids = room_ids(building)  # emitted space ids are the layout's room ids
     origin_x = min(room.x for room in layout.rooms)
