@@ -17,7 +17,7 @@ portal) is returned for the report to name.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy import ndimage
@@ -37,12 +37,16 @@ class MapCheck:
     still_missing: tuple[tuple[str, str], ...]
     """Portal pairs that still do not meet: no wall zone between them, or the cut would join a third room."""
     extra: tuple[tuple[str, str], ...]
-    """Room pairs that meet without a portal (overlapping polygons, missing walls); not changed."""
-    notes: tuple[str, ...] = field(default=())
+    """Room pairs that still meet without a portal: sealing them would part rooms a portal joins."""
+    extra_before: tuple[tuple[str, str], ...] = ()
+    """Room pairs that met without a portal as rasterized (overlapping polygons, missing walls,
+    PORTAL segments no portal references)."""
+    closed: tuple[tuple[str, str], ...] = ()
+    """Of those, the pairs a one-cell wall now parts."""
 
     @property
     def realised_before(self) -> bool:
-        return not self.missing_before and not self.extra
+        return not self.missing_before and not self.extra_before
 
     @property
     def realised(self) -> bool:
@@ -125,12 +129,25 @@ def realise_portal_graph(
             repaired = trial
             met = after
             opened.append((a, b))
+    closed: list[tuple[str, str]] = []
+    for a, b in sorted(met - wanted):
+        if a not in index or b not in index:
+            continue
+        for sealed in (_seal(repaired, labels, index[a], index[b]), _seal(repaired, labels, index[b], index[a])):
+            after = meetings(~sealed, labels, ids)
+            # accepted only when it parts these two rooms and nothing the portals join
+            if (a, b) not in after and wanted & met <= after:
+                repaired, met = sealed, after
+                closed.append((a, b))
+                break
     final = meetings(~repaired, labels, ids)
     check = MapCheck(
         missing_before=tuple(missing),
         opened=tuple(opened),
         still_missing=tuple(sorted(wanted - final)),
         extra=tuple(sorted(final - wanted)),
+        extra_before=tuple(sorted(meetings(~occupied, labels, ids) - wanted)),
+        closed=tuple(closed),
     )
     return repaired, check
 
@@ -138,6 +155,24 @@ def realise_portal_graph(
 def _disc(radius: int) -> np.ndarray:
     span = np.arange(-radius, radius + 1)
     return (span[:, None] ** 2 + span[None, :] ** 2) <= radius * radius
+
+
+def _seal(occupied: np.ndarray, labels: np.ndarray, room: int, other: int) -> np.ndarray:
+    """The map with a one-cell wall on `room`'s side of wherever it touches `other`.
+
+    It touches `other` directly (overlapping polygons without a wall between them) or through
+    free space in no room (a gap, an opening no portal accounts for) that `other` touches too.
+    """
+    free = ~occupied
+    in_room = free & (labels == room)
+    in_other = free & (labels == other)
+    gaps, _ = ndimage.label(free & (labels < 0))
+    shared = np.intersect1d(np.unique(gaps[ndimage.binary_dilation(in_room) & (gaps > 0)]),
+                            np.unique(gaps[ndimage.binary_dilation(in_other) & (gaps > 0)]))
+    towards = in_other | np.isin(gaps, shared[shared > 0])
+    sealed = occupied.copy()
+    sealed[in_room & ndimage.binary_dilation(towards)] = True
+    return sealed
 
 
 def _window(labels: np.ndarray, rooms: tuple[int, int], margin: int) -> tuple[slice, slice] | None:

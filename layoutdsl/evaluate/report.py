@@ -100,6 +100,7 @@ def _map_check_dict(m: PlanMeasures) -> dict | None:
         "realises_portal_graph": check.realised,
         "realised_as_rasterized": check.realised_before,
         "opened_portals": [list(p) for p in check.opened],
+        "sealed_joins": [list(p) for p in check.closed],
         "closed_portals": [list(p) for p in check.still_missing],
         "joins_without_portal": [list(p) for p in check.extra],
     }
@@ -227,7 +228,8 @@ def _map_check_lines(plans: list[dict], original: dict) -> list[str]:
     out = ["", "## Map check", "",
            "Every measure runs on the occupancy map. Before measuring, each map is checked against its "
            "portal graph (flood fill: rooms joined by a portal must be connected, and no others); portals "
-           "the rasterization left closed are opened with a door-wide cut. What could not be fixed:", ""]
+           "the rasterization left closed are opened with a door-wide cut, and rooms joined without a portal "
+           "are parted by a one-cell wall where that parts nothing else. Repairs, and what could not be fixed:", ""]
     for g in plans:
         check = g.get("map_check")
         if check is None:
@@ -235,6 +237,8 @@ def _map_check_lines(plans: list[dict], original: dict) -> list[str]:
         label = g["name"] + (" (original)" if g is original else "")
         for a, b in check["opened_portals"]:
             out.append(f"- {label}: opened the portal between `{a}` and `{b}` (closed in the rasterized map)")
+        for a, b in check["sealed_joins"]:
+            out.append(f"- {label}: walled `{a}` off from `{b}` (joined in the rasterized map without a portal)")
         for a, b in check["closed_portals"]:
             out.append(f"- {label}: **`{a}` and `{b}` share a portal but are not joined in the map**")
         for a, b in check["joins_without_portal"]:
@@ -255,6 +259,8 @@ def map_check_warnings(report: dict) -> list[str]:
             lines.append(f"{g['name']}: rooms `{a}` and `{b}` are joined in the map without a portal")
         for a, b in check.get("opened_portals", []):
             lines.append(f"{g['name']}: opened the portal between `{a}` and `{b}`, closed in the rasterized map")
+        for a, b in check.get("sealed_joins", []):
+            lines.append(f"{g['name']}: walled `{a}` off from `{b}`, joined in the rasterized map without a portal")
     return lines
 
 

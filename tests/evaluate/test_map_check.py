@@ -56,7 +56,29 @@ def test_joins_without_a_portal_are_named_in_the_report():
         replace(office, segments=office.segments + (stray,)),
     ])
     report = evaluate(plan, [corridor_plan()], ["orig.xml", "gen.xml"], OPTIONS)
-    assert report["original"]["map_check"]["joins_without_portal"] == [["C0", "R0"]]
+    check = report["original"]["map_check"]
+    assert not check["realised_as_rasterized"]
+    # a one-cell wall on one side of the opening parts them, and E0-C0 stays joined
+    assert check["sealed_joins"] == [["C0", "R0"]]
+    assert check["realises_portal_graph"] and check["joins_without_portal"] == []
     assert report["generated"][0]["map_check"]["realises_portal_graph"]
-    assert map_check_warnings(report) == ["orig: rooms `C0` and `R0` are joined in the map without a portal"]
-    assert "`C0` and `R0` are joined in the map without a portal" in render_markdown(report)
+    assert map_check_warnings(report) == [
+        "orig: walled `C0` off from `R0`, joined in the rasterized map without a portal"]
+    assert "walled `C0` off from `R0`" in render_markdown(report)
+
+
+def test_a_join_that_cannot_be_sealed_without_parting_a_portal_is_named():
+    import numpy as np
+
+    from layoutdsl.evaluate.portals import realise_portal_graph
+
+    # A and C at the ends of a free gap strip, B touching the strip from above: every room
+    # touches the one gap. A-B and B-C have portals, A-C none; walling A or C off from the
+    # gap would also part it from B, so the join is left as it is and named
+    labels_one_gap = np.array([[0, 0, -1, -1, -1, -1, 2, 2]] * 3)
+    labels_one_gap[0, 3:5] = 1
+    occupied_one_gap = np.zeros(labels_one_gap.shape, dtype=bool)
+    _, check = realise_portal_graph(occupied_one_gap, labels_one_gap, ("A", "B", "C"),
+                                    {("A", "B"), ("B", "C")}, 1.0, 1.0)
+    assert check.extra == (("A", "C"),)
+    assert "rooms `A` and `C` are joined in the map without a portal" in check.warnings()
