@@ -205,7 +205,7 @@ def compile_spec(
             warm_start_from_rects(model, spec, rects_start)
         timings["polish"] = time.monotonic() - t0
         # neighbourhoods of LNS_SIZE rooms only pay off when they are a small part of the spec
-        if first_polish.has_solution and len(spec.rooms) > 2 * LNS_SIZE:
+        if first_polish.has_solution and len(spec.rooms) > 2 * LNS_SIZE and options.search:
             t0 = time.monotonic()
             lns_share = LNS_SHARE[len(spec.rooms) <= LNS_SMALL]
             lns_deadline = time.monotonic() + lns_share * max(0.0, deadline - time.monotonic())
@@ -219,8 +219,11 @@ def compile_spec(
     remaining = max(0.5, deadline - time.monotonic() - reserve)
     start_objective = objective_of_rects(spec, polished) if polished is not None else None
     t0 = time.monotonic()
-    outcome = solve(model, replace(options, time_limit=remaining), progress=progress,
-                    warm_start=rects_start is not None)
+    if options.search or rects_start is None:
+        outcome = solve(model, replace(options, time_limit=remaining), progress=progress,
+                        warm_start=rects_start is not None)
+    else:
+        outcome = SolveOutcome(status="construction", has_solution=False)
     timings["solve"] = time.monotonic() - t0
     improved = outcome.has_solution and (
         start_objective is None or outcome.objective is None or outcome.objective < start_objective - 1e-6)

@@ -64,6 +64,10 @@ class SolveOptions:
     """One of STRATEGIES."""
     formulation: Formulation = field(default_factory=Formulation)
     """Which model improvements over the thesis formulation as written to use."""
+    search: bool = True
+    """After the (polished) first layout, search for better ones (neighbourhoods, then
+    branch-and-bound) until a limit. Off: the polished first layout is the answer, a short
+    deterministic stopping rule (variants, issue 11)."""
     cycles_fallback: bool = True
     """auto: when the construction finds no start and the room graph has cycles, spend the
     time left on cycle decomposition (§5.5.3). Off inside the decomposition's own solves."""

@@ -1,15 +1,21 @@
-"""Many different verified layouts from one spec (seed §6.2).
+"""Many different verified layouts from one spec (the thesis, §6.2; issue 11).
 
-Variant k (1..N) differs from the others in two ways:
-- as in the thesis, a chosen room (an entrance if there is one) gets a `Position` at a
-  different point of the boundary for each variant (dropped again if that variant finds no
-  layout with it, so every variant still gets one);
-- the first feasible layout is constructed from a randomised seed geometry (perturbed hints,
-  or a spring embedding of the room graph) drawn from seed + k - 1, so the rooms' relative
-  positions differ, not just the entrance.
+Variant k (1..N) is compiled with seed + k - 1. Two sources of variants:
 
-`diversity` measures how different they are: over all pairs of variants, the mean fraction
-of room pairs whose relative position (left/right/above/below) differs.
+- "graph" (the default): each variant is a NEW arrangement generated from the room graph
+  alone (layoutdsl.generate), ignoring the spec's hints, so variants differ from the
+  original plan and from one another;
+- "hints": as before issue 11, for comparison: the first layout is repaired from the hints
+  perturbed by the seed, and (as in the thesis) a chosen room, an entrance if there is
+  one, gets a `Position` at another point of the boundary per variant (dropped again if that
+  variant finds no layout with it). These stay close to the original arrangement.
+
+Each variant stops at a short deterministic rule: its first verified layout, polished with
+its relations fixed (SolveOptions.search off), so the same spec and seed give the same
+bytes and a 50-room variant costs seconds, not the compile's full time limit.
+
+`pairwise_differences` / `diversity` measure how different they are with the project's
+arrangement difference (layoutdsl.evaluate.difference).
 """
 
 from __future__ import annotations
@@ -25,8 +31,18 @@ from pathlib import Path
 from layoutdsl.ast import Position, Spec
 from layoutdsl.layout import Layout
 
-MAX_WORKERS = 2
-"""Variants solve in parallel processes; the target machines have 2 cores."""
+def default_workers() -> int:
+    """Parallel variant processes: one per core this process may use."""
+    import os
+
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not on every platform
+        return max(1, os.cpu_count() or 1)
+
+
+SOURCES = ("graph", "hints")
+"""Where variants come from: generated from the room graph, or perturbed from the hints."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -35,9 +51,15 @@ class VariantsResult:
 
     layouts: list[Layout | None]
     diversity: float | None
+    """Mean pairwise difference of the variants found (None with fewer than two)."""
     paths: list[Path]
     positions: list[tuple[str, float, float] | None]
     """The (room, x, y) each variant fixed, or None where it kept the spec's own positions."""
+    differences: dict[tuple[int, int], float] = None  # type: ignore[assignment]
+    """(i, j) -> arrangement difference of variants i and j (1-based; both found)."""
+    from_hints: list[float | None] = None  # type: ignore[assignment]
+    """Per variant: its difference from the spec's hints (the original plan), None
+    without hints or without a layout."""
 
 
 def chosen_room(spec: Spec) -> str | None:
@@ -81,22 +103,13 @@ def relation(a, b) -> str:
 
 
 def diversity(layouts: list[Layout]) -> float | None:
-    """Mean over variant pairs of the fraction of room pairs whose relation differs."""
+    """Mean over variant pairs of their arrangement difference (evaluate.difference)."""
+    from layoutdsl.evaluate.difference import difference, layout_centres
+
     if len(layouts) < 2:
         return None
-    fractions = []
-    for first, second in combinations(layouts, 2):
-        rooms_a = {room.id: room for room in first.rooms}
-        rooms_b = {room.id: room for room in second.rooms}
-        ids = sorted(rooms_a)
-        pairs = list(combinations(ids, 2))
-        if not pairs:
-            continue
-        differ = sum(
-            relation(rooms_a[i], rooms_a[j]) != relation(rooms_b[i], rooms_b[j]) for i, j in pairs
-        )
-        fractions.append(differ / len(pairs))
-    return sum(fractions) / len(fractions) if fractions else None
+    values = [difference(layout_centres(a), layout_centres(b)) for a, b in combinations(layouts, 2)]
+    return sum(values) / len(values)
 
 
 _SPEC_FOR_WORKERS: Spec | None = None
@@ -105,22 +118,24 @@ _SPEC_FOR_WORKERS: Spec | None = None
 
 def _solve_variant(job: tuple[int, int, object, tuple[str, float, float] | None]):
     """Compile one variant in a worker: its layout and the position it kept (or None)."""
-    index, seed, options, point = job
+    index, seed, options, point, source = job
     spec = _SPEC_FOR_WORKERS
     assert spec is not None
-    return _compile_variant(spec, index, seed, options, point)
+    return _compile_variant(spec, index, seed, options, point, source)
 
 
-def _compile_variant(spec: Spec, index: int, seed: int, options, point):
+def _compile_variant(spec: Spec, index: int, seed: int, options, point, source: str = "graph"):
     from layoutdsl.compiler import compile_spec
     from layoutdsl.construct import construct_start
 
     variant_seed = seed + index - 1
     began = time.monotonic()
     deadline = began + options.time_limit
+    from_hints = source == "hints"
 
     def provider(sub_spec: Spec, sub_options) -> dict | None:
-        return construct_start(sub_spec, seed=variant_seed, randomize=True,
+        return construct_start(sub_spec, seed=variant_seed, randomize=from_hints,
+                               use_hints=from_hints,
                                deadline=time.monotonic() + sub_options.time_limit)
 
     attempts = [point, None] if point is not None else [None]
@@ -134,7 +149,8 @@ def _compile_variant(spec: Spec, index: int, seed: int, options, point):
             break
         # with a position, keep half the time for the variant without it
         limit = left / 2 if attempt_point is not None else left
-        variant_options = replace(options, time_limit=limit, seed=variant_seed, quiet=True)
+        variant_options = replace(options, time_limit=limit, seed=variant_seed, quiet=True,
+                                  search=False)
         result = compile_spec(variant_spec, variant_options, start_provider=provider,
                               explain_infeasible=False)
         if result.layout is not None:
@@ -151,28 +167,32 @@ def compile_variants(
     outdir: Path | str | None = None,
     formats=None,
     robot_room: str | None = None,
-    workers: int = MAX_WORKERS,
+    workers: int | None = None,
+    source: str = "graph",
 ) -> VariantsResult:
     """Compile N variants of the spec; write NAME-k.* (and NAME-k.layout.json) to `outdir`.
 
-    Each variant gets options.time_limit seconds; up to `workers` run at once.
+    Each variant gets at most options.time_limit seconds; up to `workers` (default: one per
+    usable core) run at once. `source` is one of SOURCES (see the module docstring).
     """
     from layoutdsl.solve import SolveOptions
 
     global _SPEC_FOR_WORKERS
+    if source not in SOURCES:
+        raise ValueError(f"unknown variant source {source!r}; expected one of {SOURCES}")
     if options is None:
         options = SolveOptions.from_settings(spec.settings)
-    room = chosen_room(spec)
+    room = chosen_room(spec) if source == "hints" else None
     jobs = []
     for index in range(1, n + 1):
         point = None
         if room is not None and spec.boundary is not None:
             x, y = variant_point(spec, seed, index)
             point = (room, x, y)
-        jobs.append((index, seed, options, point))
+        jobs.append((index, seed, options, point, source))
 
     results: list[tuple[Layout | None, object]]
-    workers = max(1, min(workers, n, MAX_WORKERS))
+    workers = max(1, min(workers or default_workers(), n))
     if workers > 1 and "fork" in multiprocessing.get_all_start_methods():
         _SPEC_FOR_WORKERS = spec
         try:
@@ -186,11 +206,55 @@ def compile_variants(
 
     layouts = [layout for layout, _ in results]
     positions = [point for _, point in results]
-    paths: list[Path] = []
-    if outdir is not None:
-        paths = _write(spec, layouts, Path(outdir), formats, robot_room)
     found = [layout for layout in layouts if layout is not None]
-    return VariantsResult(layouts, diversity(found), paths, positions)
+    result = VariantsResult(layouts, diversity(found), [], positions,
+                            pairwise_differences(layouts), differences_from_hints(spec, layouts))
+    if outdir is not None:
+        result.paths.extend(_write(spec, layouts, Path(outdir), formats, robot_room))
+        result.paths.append(_write_report(spec, result, seed, source, Path(outdir)))
+    return result
+
+
+def _write_report(spec: Spec, result: VariantsResult, seed: int, source: str, outdir: Path) -> Path:
+    """NAME-variants.json: each variant's seed and differences, for comparing them later."""
+    import json
+
+    from layoutdsl.atomic import write_text_atomic
+
+    report = {
+        "spec": spec.name,
+        "source": source,
+        "variants": [
+            {"index": index, "seed": seed + index - 1, "found": layout is not None,
+             "difference_from_hints": None if original is None else round(original, 4)}
+            for index, (layout, original) in enumerate(zip(result.layouts, result.from_hints), start=1)
+        ],
+        "pairwise_differences": [
+            {"a": i, "b": j, "difference": round(value, 4)}
+            for (i, j), value in sorted(result.differences.items())
+        ],
+    }
+    return write_text_atomic(outdir / f"{spec.name}-variants.json", json.dumps(report, indent=2) + "\n")
+
+
+def pairwise_differences(layouts: list[Layout | None]) -> dict[tuple[int, int], float]:
+    """(i, j) -> arrangement difference of variants i < j (1-based), both with a layout."""
+    from layoutdsl.evaluate.difference import difference, layout_centres
+
+    numbered = [(i, layout) for i, layout in enumerate(layouts, start=1) if layout is not None]
+    return {(i, j): difference(layout_centres(a), layout_centres(b))
+            for (i, a), (j, b) in combinations(numbered, 2)}
+
+
+def differences_from_hints(spec: Spec, layouts: list[Layout | None]) -> list[float | None]:
+    """Per variant: its arrangement difference from the spec's hints (None without)."""
+    from layoutdsl.evaluate.difference import difference, hint_centres, layout_centres
+
+    if not spec.hints:
+        return [None] * len(layouts)
+    original = hint_centres(spec)
+    return [None if layout is None else difference(layout_centres(layout), original)
+            for layout in layouts]
 
 
 def _write(

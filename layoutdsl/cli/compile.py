@@ -51,7 +51,14 @@ def add_parser(subparsers) -> None:
                         help="comma-separated output formats: xml, png, world, map (default all)")
     parser.add_argument("--robot-room", metavar="ID", help="room the simulated robot starts in")
     parser.add_argument("--variants", type=positive_int, metavar="N",
-                        help="write N different verified layouts, NAME-1.* ... NAME-N.*")
+                        help="write N different verified layouts, NAME-1.* ... NAME-N.*: new "
+                        "arrangements generated from the room graph (seed, seed+1, ...), each "
+                        "its first verified layout, polished")
+    parser.add_argument("--variants-from", choices=("graph", "hints"), default="graph",
+                        help="graph (default): variants ignore the spec's hints; hints: "
+                        "variants perturb the hints (they stay close to the original plan)")
+    parser.add_argument("--workers", type=positive_int, metavar="N",
+                        help="variants compiled in parallel (default: one per core)")
     parser.add_argument("--strategy", choices=STRATEGIES, default="auto",
                         help="auto: construct a first layout, then SCIP; thesis: the thesis' "
                         "formulation solved by SCIP from scratch; cycles: cycle decomposition")
@@ -235,14 +242,16 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
         return _error("--variants is not available in this build (layoutdsl.variants is missing)")
     try:
         result = compile_variants(spec, args.variants, seed=options.seed, options=options,
-                                  outdir=outdir, formats=formats, robot_room=args.robot_room)
+                                  outdir=outdir, formats=formats, robot_room=args.robot_room,
+                                  workers=args.workers, source=args.variants_from)
     except OSError as error:
         return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
     layouts = list(result.layouts)
     count = sum(1 for layout in layouts if layout is not None)
     line = f"compiled `{spec.name}`: {count} of {args.variants} variants"
     if result.diversity is not None:
-        line += f", diversity {result.diversity:.2f} (mean share of room pairs whose relative position differs)"
+        line += (f", mean pairwise difference {result.diversity:.2f} (share of room pairs whose "
+                 "relative position differs, best of 8 rotations/mirrors)")
     lines = [line]
     for index, layout in enumerate(layouts, start=1):
         if layout is None:
@@ -251,7 +260,12 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
         info = layout.solve
         objective = "-" if info is None or info.objective is None else f"{info.objective:.4g}"
         status = "-" if info is None else _STATUS_TEXT.get(info.status, info.status)
-        lines.append(f"  {spec.name}-{index}: objective {objective}, {status}")
+        original = result.from_hints[index - 1]
+        versus = "" if original is None else f", difference from the hints {original:.2f}"
+        lines.append(f"  {spec.name}-{index}: objective {objective}, {status}{versus}")
+    if result.differences:
+        lines.append("  pairwise    " + ", ".join(
+            f"{i}-{j} {value:.2f}" for (i, j), value in sorted(result.differences.items())))
     if result.paths:
         lines.append("  wrote       " + ", ".join(str(p) for p in result.paths))
     print("\n".join(lines))

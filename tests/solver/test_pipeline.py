@@ -261,6 +261,6 @@ def test_compile_command_writes_numbered_variants(tmp_path):
     spec_path.write_text(SMALL_LAY.replace("time_limit 20", "time_limit 3"))
     done = _compile(str(spec_path), "-o", str(tmp_path / "out"), "-q", "--emit", "xml", "--variants", "2")
     assert done.returncode == exitcodes.OK, done.stderr
-    assert "2 of 2 variants" in done.stdout and "diversity" in done.stdout
+    assert "2 of 2 variants" in done.stdout and "pairwise difference" in done.stdout
     names = sorted(p.name for p in (tmp_path / "out").iterdir())
     assert names == ["office-1.layout.json", "office-1.xml", "office-2.layout.json", "office-2.xml"]

@@ -1,0 +1,295 @@
+"""Benchmark: new buildings generated from real plans' room graphs alone (issue 11's acceptance).
+
+For each building XML file in FOLDER (default ../shared/floorplans beside the repo): import it
+WITHOUT hints (the default), compile at default settings, and print one row:
+
+    plan, rooms, cycles, verified, seconds to the first verified layout, total seconds,
+    arrangement difference from the original (layoutdsl.evaluate.difference), generated /
+    original room area, fill (room area / bounding box of the rooms) and the original's fill
+
+and a summary line (verified count, median / max first-layout seconds, how many meet area
++-15 % and fill >= 0.8 x the original's). `--throughput PLAN` instead compiles variants of one
+plan (a >= 50-room one for the acceptance) for a minute of wall clock on all cores and reports
+verified variants per minute and their pairwise differences.
+
+Every solve runs in its own forked process with a hard timeout, like bench/bench.py. Timings
+depend on the machine and its load; say so when quoting them.
+
+    python bench/generation.py [FOLDER] [--time-limit 60] [--only PATTERN] [--seed 0]
+                               [--json] [--out FILE]
+    python bench/generation.py --throughput school_wilbraham [--minutes 1] [--workers 2]
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import json
+import multiprocessing
+import statistics
+import sys
+import time
+from pathlib import Path
+
+DEFAULT_FOLDER = Path(__file__).resolve().parents[2] / "shared" / "floorplans"
+GRACE_SECONDS = 30.0
+"""A solve gets this long past its time limit before its process is killed."""
+
+AREA_TOLERANCE = 0.15
+FILL_RATIO = 0.8
+
+
+def fill(rects) -> float:
+    """Room area over the area of the rooms' bounding box; rects are (x, y, w, h)."""
+    rects = list(rects)
+    x0 = min(r[0] for r in rects)
+    y0 = min(r[1] for r in rects)
+    x1 = max(r[0] + r[2] for r in rects)
+    y1 = max(r[1] + r[3] for r in rects)
+    return sum(r[2] * r[3] for r in rects) / max((x1 - x0) * (y1 - y0), 1e-9)
+
+
+def _original(path: Path):
+    """(spec without hints, original room area, original fill, original centres)."""
+    from layoutdsl.evaluate.difference import building_centres
+    from layoutdsl.importer import import_building, read_building
+    from layoutdsl.importer.convert import original_room_area
+
+    spec, diagnostics = import_building(path)
+    if spec is None:
+        raise ValueError("import failed: " + "; ".join(d.message for d in diagnostics if d.is_error))
+    building, _ = read_building(path)
+    area = original_room_area(building)
+    # the imported boundary is the original rooms' bounding box
+    original_fill = area / max(spec.boundary.w * spec.boundary.h, 1e-9)
+    return spec, area, original_fill, building_centres(building)
+
+
+def _layout_row(spec, layout, area, original_fill, centres) -> dict:
+    from layoutdsl.evaluate.difference import difference, layout_centres
+    from layoutdsl.verify import verify
+
+    rects = [(r.x, r.y, r.w, r.h) for r in layout.rooms]
+    generated = sum(r.area for r in layout.rooms)
+    return {
+        "verified": not verify(spec, layout),
+        "difference": round(difference(layout_centres(layout), centres), 4),
+        "area_ratio": round(generated / area, 4) if area > 0 else None,
+        "fill": round(fill(rects), 4),
+        "original_fill": round(original_fill, 4),
+    }
+
+
+def _compile_plan(path: str, time_limit: float, seed: int) -> dict:
+    from layoutdsl.compiler import compile_spec
+    from layoutdsl.cycles import cycle_rank
+    from layoutdsl.solve import SolveOptions
+
+    spec, area, original_fill, centres = _original(Path(path))
+    row = {"rooms": len(spec.rooms), "cycles": cycle_rank(spec)}
+    began = time.monotonic()
+    result = compile_spec(spec, SolveOptions(time_limit=time_limit, seed=seed, quiet=True),
+                          explain_infeasible=False)
+    row["seconds"] = round(time.monotonic() - began, 3)
+    row["status"] = result.status
+    if result.layout is not None:
+        row["first"] = result.layout.solve.first_feasible_seconds if result.layout.solve else None
+        row.update(_layout_row(spec, result.layout, area, original_fill, centres))
+    else:
+        row["verified"] = False
+    return row
+
+
+def _child(queue, function, *args):
+    try:
+        queue.put(function(*args))
+    except Exception as error:  # one plan's failure is a row, never the end of the run
+        queue.put({"status": "error", "error": f"{type(error).__name__}: {error}"})
+
+
+def isolated(function, *args, limit: float) -> dict:
+    """function(*args) in a forked process, killed if it overruns `limit` + GRACE_SECONDS."""
+    context = multiprocessing.get_context("fork")
+    queue = context.Queue()
+    process = context.Process(target=_child, args=(queue, function, *args))
+    began = time.monotonic()
+    process.start()
+    try:
+        row = queue.get(timeout=limit + GRACE_SECONDS)
+    except Exception:
+        row = {"status": "killed", "seconds": round(time.monotonic() - began, 3)}
+    process.join(timeout=5)
+    if process.is_alive():
+        process.kill()
+        process.join()
+    return row
+
+
+COLUMNS = (
+    ("plan", 36, "{}"), ("rooms", 5, "{}"), ("cycles", 6, "{}"), ("verified", 8, "{}"),
+    ("first", 7, "{:.2f}"), ("seconds", 7, "{:.1f}"), ("difference", 6, "{:.3f}"),
+    ("area_ratio", 6, "{:.3f}"), ("fill", 6, "{:.3f}"), ("original_fill", 8, "{:.3f}"),
+)
+HEADERS = {"first": "first s", "seconds": "total s", "difference": "diff", "area_ratio": "area",
+           "original_fill": "orig fill"}
+
+
+def format_row(row: dict) -> str:
+    cells = []
+    for key, width, fmt in COLUMNS:
+        value = row.get(key)
+        if key == "verified":
+            text = "yes" if value else "no"
+        else:
+            text = "-" if value is None else fmt.format(value)
+        cells.append(text.ljust(width) if key == "plan" else text.rjust(width))
+    line = " ".join(cells)
+    if row.get("error"):
+        line += f"\n    {row['error']}"
+    return line
+
+
+def header() -> str:
+    return " ".join(
+        HEADERS.get(key, key).ljust(width) if key == "plan" else HEADERS.get(key, key).rjust(width)
+        for key, width, _ in COLUMNS
+    )
+
+
+def meets(row: dict) -> tuple[bool, bool]:
+    """(area within +-15 % of the original, fill >= 0.8 x the original's)."""
+    area = row.get("area_ratio")
+    fill_ok = (row.get("fill") is not None and row.get("original_fill")
+               and row["fill"] >= FILL_RATIO * row["original_fill"])
+    return (area is not None and abs(area - 1) <= AREA_TOLERANCE, bool(fill_ok))
+
+
+def summary(rows: list[dict]) -> str:
+    verified = [row for row in rows if row.get("verified")]
+    firsts = [row["first"] for row in verified if row.get("first") is not None]
+    area_ok = sum(meets(row)[0] for row in verified)
+    fill_ok = sum(meets(row)[1] for row in verified)
+    diff_ok = sum((row.get("difference") or 0) >= 0.3 for row in verified)
+    median = f"{statistics.median(firsts):.2f}" if firsts else "-"
+    worst = f"{max(firsts):.2f}" if firsts else "-"
+    return (f"verified {len(verified)}/{len(rows)}; first layout median {median} s, max {worst} s; "
+            f"difference >= 0.3: {diff_ok}; area within +-15 %: {area_ok}; "
+            f"fill >= 0.8 x original: {fill_ok}")
+
+
+def _variant_batch(path: str, seeds: list[int], time_limit: float) -> list[dict]:
+    """Compile one variant per seed (graph source, deterministic stopping rule) in this process."""
+    from layoutdsl.variants import _compile_variant
+    from layoutdsl.solve import SolveOptions
+
+    spec, area, original_fill, centres = _original(Path(path))
+    rows = []
+    for seed in seeds:
+        began = time.monotonic()
+        layout, _ = _compile_variant(spec, 1, seed, SolveOptions(time_limit=time_limit, quiet=True),
+                                     None, "graph")
+        row = {"seed": seed, "seconds": round(time.monotonic() - began, 3)}
+        if layout is not None:
+            row.update(_layout_row(spec, layout, area, original_fill, centres))
+            row["centres"] = {r.id: (r.x + r.w / 2, r.y + r.h / 2) for r in layout.rooms}
+        rows.append(row)
+    return rows
+
+
+def throughput(path: Path, minutes: float, workers: int, time_limit: float) -> dict:
+    """Variants per minute of wall clock: `workers` processes compile seeds until time is up."""
+    from itertools import combinations
+
+    from layoutdsl.evaluate.difference import difference
+
+    context = multiprocessing.get_context("fork")
+    began = time.monotonic()
+    end = began + 60 * minutes
+    rows: list[dict] = []
+    next_seed = 0
+    with context.Pool(workers) as pool:
+        pending = []
+        while time.monotonic() < end or pending:
+            while len(pending) < workers and time.monotonic() < end:
+                pending.append(pool.apply_async(_variant_batch, (str(path), [next_seed], time_limit)))
+                next_seed += 1
+            done = [job for job in pending if job.ready()]
+            for job in done:
+                pending.remove(job)
+                finished = time.monotonic()
+                for row in job.get():
+                    row["finished"] = finished - began
+                    rows.append(row)
+            time.sleep(0.05)
+    elapsed = time.monotonic() - began
+    in_time = [row for row in rows if row.get("verified") and row["finished"] <= 60 * minutes]
+    pairs = [difference(a["centres"], b["centres"]) for a, b in combinations(in_time, 2)]
+    return {
+        "plan": path.stem,
+        "workers": workers,
+        "minutes": minutes,
+        "attempted": len(rows),
+        "verified_in_time": len(in_time),
+        "per_minute": round(len(in_time) / minutes, 2),
+        "elapsed": round(elapsed, 1),
+        "pairwise_min": round(min(pairs), 4) if pairs else None,
+        "pairwise_median": round(statistics.median(pairs), 4) if pairs else None,
+        "pairwise_below_0.3": sum(value < 0.3 for value in pairs),
+        "pairs": len(pairs),
+        "differences_from_original": [row["difference"] for row in in_time],
+        "area_ratios": [row["area_ratio"] for row in in_time],
+        "seconds_per_variant": [row["seconds"] for row in rows],
+    }
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("folder", nargs="?", type=Path, default=DEFAULT_FOLDER,
+                        help="folder of building XML files (default ../shared/floorplans)")
+    parser.add_argument("--time-limit", type=float, default=60.0, help="seconds per compile (default 60)")
+    parser.add_argument("--only", metavar="PATTERN", help="plans whose file name matches (glob or substring)")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--throughput", metavar="PLAN", help="variants-per-minute run on this plan instead")
+    parser.add_argument("--minutes", type=float, default=1.0, help="throughput run length (default 1)")
+    parser.add_argument("--workers", type=int, default=2, help="throughput processes (default 2)")
+    parser.add_argument("--json", action="store_true", help="print JSON rows instead of the table")
+    parser.add_argument("--out", type=Path, help="also write the table (or JSON) to this file")
+    args = parser.parse_args(argv)
+
+    lines: list[str] = []
+
+    def emit(text: str) -> None:
+        print(text, flush=True)
+        lines.append(text)
+
+    if args.throughput:
+        matches = sorted(p for p in args.folder.glob("*.xml") if args.throughput in p.name)
+        if not matches:
+            print(f"no plan matching `{args.throughput}` in {args.folder}", file=sys.stderr)
+            return 2
+        result = throughput(matches[0], args.minutes, args.workers, args.time_limit)
+        emit(json.dumps(result, indent=2) if args.json else "\n".join(
+            f"{key:28} {value}" for key, value in result.items()))
+    else:
+        rows = []
+        if not args.json:
+            emit(header())
+        for path in sorted(args.folder.glob("*.xml")):
+            if args.only and not (fnmatch.fnmatch(path.name, args.only) or args.only in path.name):
+                continue
+            row = {"plan": path.stem}
+            row.update(isolated(_compile_plan, str(path), args.time_limit, args.seed,
+                                limit=args.time_limit))
+            rows.append(row)
+            emit(json.dumps(row) if args.json else format_row(row))
+        if not args.json:
+            emit(summary(rows))
+    if args.out:
+        args.out.parent.mkdir(parents=True, exist_ok=True)
+        args.out.write_text("\n".join(lines) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
