@@ -754,14 +754,14 @@ SHRINK_ORDER: tuple[bool | float, ...] = (False, True)
 GENERATED_TRIES = 12
 """Greedy contact placements (layoutdsl.generate) tried after the hint geometries."""
 
-GENERATED_TRY_SECONDS = 6.0
+GENERATED_TRY_SECONDS = 4.0
 """Least time the repair of one generated geometry gets."""
 
 GENERATED_TRY_SHARE = 0.35
 """Share of the time left the repair of one generated geometry gets, when that is more."""
 
-GRAPH_TRIES = 4
-"""Spring-embedded seed geometries tried last (the fallback before generate existed)."""
+GRAPH_TRIES = 12
+"""Spring-embedded seed geometries, tried in turn with the generated ones."""
 
 GRAPH_TRY_SECONDS = 1.5
 """Least time a graph geometry's repair gets (more when much time is left)."""
@@ -782,8 +782,14 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints:
         makers += [("hints", lambda shrink=shrink: hint_geometry(spec, shrink=shrink))
                    for shrink in SHRINK_ORDER]
     # one generator shared by the makers, called in order: the same seed, the same sequence
-    makers += [("generated", lambda: generate_geometry(spec, rng)) for _ in range(GENERATED_TRIES)]
-    makers += [("graph", lambda: construct_geometry(spec, rng)) for _ in range(GRAPH_TRIES)]
+    # the two graph families alternate: measured on the real plans (machine shared), each
+    # finds layouts the other misses (greedy placements: large plans; spring embeddings:
+    # some 28-36-room plans with cycles), so neither may starve the other of time
+    for index in range(max(GENERATED_TRIES, GRAPH_TRIES)):
+        if index < GENERATED_TRIES:
+            makers.append(("generated", lambda: generate_geometry(spec, rng)))
+        if index < GRAPH_TRIES:
+            makers.append(("graph", lambda: construct_geometry(spec, rng)))
     return makers
 
 

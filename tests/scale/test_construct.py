@@ -95,9 +95,9 @@ def test_own_check_rejects_overlap_and_missing_wall():
 @pytest.mark.skipif(not FLOORPLANS.is_dir(), reason="shared floor plans not present")
 @pytest.mark.parametrize("plan", ["school_Lamuniere1.xml", "school_Sabadell3.xml"])
 def test_small_real_plans_construct_fast(plan):
-    from layoutdsl.importer import import_building
+    from layoutdsl.importer import ImportOptions, import_building
 
-    spec, diagnostics = import_building(FLOORPLANS / plan)
+    spec, diagnostics = import_building(FLOORPLANS / plan, ImportOptions(hints=True))
     assert spec is not None, diagnostics
     began = time.monotonic()
     rects = construct_start(spec, deadline=began + 30)
