@@ -610,6 +610,8 @@ def _repair(
     geometry: dict[str, Rect],
     deadline: float,
     seed: int,
+    max_stalls: int = MAX_STALLS,
+    free_defects: bool = False,
 ) -> dict[str, Rect] | None:
     """Relations from the geometry, repaired round by round until they admit a layout.
 
@@ -621,6 +623,15 @@ def _repair(
     options: dict[Pair, tuple[str, ...]] = {
         pair: problem.axis_choices(geometry, pair)[:1] for pair in problem.pairs
     }
+    if free_defects:
+        # where the geometry is wrong (rooms overlap, or a door's rooms do not touch) its
+        # relation is a guess: let the first round choose the axis (measured on generated
+        # geometries: fewer stalled rounds)
+        for pair in problem.pairs:
+            distance = problem.distance(geometry, pair)
+            wall = problem.walls.get(frozenset(pair))
+            if distance < problem.walldim - 1e-6 or (wall and distance > problem.walldim + 1e-3):
+                options[pair] = _widen(problem, geometry, pair, options[pair])
     start: _Outcome | None = None
     neighbours: dict[str, set[str]] = {}
     for adj in problem.spec.adjacencies:
@@ -664,7 +675,7 @@ def _repair(
         best_total = min(best_total, total)
         if stalled:
             stalls += 1
-            if stalls > MAX_STALLS:
+            if stalls > max_stalls:
                 # a local minimum of the stretch: another seed geometry does better than
                 # ever wider (and slower) MIPs around this one
                 return None
@@ -741,7 +752,10 @@ def construct_start(
         else:
             share = min(left, max(GRAPH_TRY_SECONDS, 0.15 * left))
         _debug(f"geometry {index} ({kind}): {share:.1f}s")
-        rects = _repair(problem, geometry, time.monotonic() + share, seed)
+        # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
+        rects = _repair(problem, geometry, time.monotonic() + share, seed,
+                        max_stalls=MAX_STALLS if kind == "hints" else GRAPH_MAX_STALLS,
+                        free_defects=kind == "generated")
         if rects is not None:
             return rects
     return None
@@ -750,6 +764,9 @@ def construct_start(
 SHRINK_ORDER: tuple[bool | float, ...] = (False, True)
 """Hint geometries in the order tried: the original boxes, then boxes shrunk to target."""
 
+
+GRAPH_MAX_STALLS = 1
+"""Rounds without progress after which a generated or spring geometry is given up."""
 
 GENERATED_TRIES = 12
 """Greedy contact placements (layoutdsl.generate) tried after the hint geometries."""

@@ -59,6 +59,10 @@ HALO_WEIGHT = 1.0
 CONTACT_WEIGHT = 3.0
 """Per metre a placed neighbour is from touching (cycles), or its wall is short."""
 
+CYCLE_WEIGHT = 2.0
+"""Per metre a room lands beyond the reach of a placed room it shares an unplaced
+neighbour with (that neighbour closes a cycle and must touch both)."""
+
 COMPACT_WEIGHT = 0.5
 """Per metre the placed rooms' bounding box grows (half perimeter): real buildings are
 compact. Perimeter, not area: an area term outweighs small overlaps on large plans."""
@@ -76,6 +80,15 @@ def _target_sides(spec: Spec, shrink: float) -> dict[str, tuple[float, float]]:
         sizes = RoomSizes.of(room)
         long_side = min(sizes.hi_long, max(sizes.lo_long, sizes.target_long * shrink))
         short_side = min(sizes.hi_short, max(sizes.lo_short, sizes.target_short * shrink))
+        if not sizes.corridor:
+            # clamping the two sides separately can break the aspect-ratio bounds: widen
+            # the short side (or shorten the long one) back into them
+            if long_side > sizes.max_ar * short_side:
+                short_side = min(sizes.hi_short, long_side / sizes.max_ar)
+                long_side = min(long_side, sizes.max_ar * short_side)
+            elif long_side < sizes.min_ar * short_side:
+                long_side = min(sizes.hi_long, sizes.min_ar * short_side)
+                short_side = min(short_side, long_side / sizes.min_ar)
         sides[room.id] = (long_side, short_side)
     return sides
 
@@ -189,7 +202,10 @@ def _boundary_distance(cands: np.ndarray, width: float, height: float) -> np.nda
     return np.clip(np.minimum.reduce([x0, y0, width - x1, height - y1]), 0, None)
 
 
-def _bbox_growth(cands: np.ndarray, bbox) -> np.ndarray:
+def _bbox_growth(cands: np.ndarray, bbox, width: float, height: float) -> np.ndarray:
+    """Metres the placed rooms' bounding box grows, each axis weighted by how much of the
+    boundary it has: in a long, thin boundary, growing along it is cheap and across it dear,
+    so the building takes the boundary's shape instead of a square in its middle."""
     if bbox is None:
         return np.zeros(len(cands))
     bx0, by0, bx1, by1 = bbox
@@ -197,7 +213,8 @@ def _bbox_growth(cands: np.ndarray, bbox) -> np.ndarray:
     ny0 = np.minimum(by0, cands[:, 1])
     nx1 = np.maximum(bx1, cands[:, 0] + cands[:, 2])
     ny1 = np.maximum(by1, cands[:, 1] + cands[:, 3])
-    return (nx1 - nx0) + (ny1 - ny0) - (bx1 - bx0) - (by1 - by0)
+    mean = (width + height) / 2
+    return ((nx1 - nx0 - bx1 + bx0) * mean / width + (ny1 - ny0 - by1 + by0) * mean / height)
 
 
 def _orientations(long_side: float, short_side: float, width: float, height: float,
@@ -211,7 +228,7 @@ def _orientations(long_side: float, short_side: float, width: float, height: flo
     return fitting or both[:1]
 
 
-PACKING_DENSITY = 0.65
+PACKING_DENSITY = 0.5
 """Room area the greedy pass aims to lay out per m² of boundary: dense plans (real ones
 fill up to 100 % of their bounding box with target areas) are drawn smaller, so the greedy
 pass finds free sides; the construction's final LP grows them back as far as they fit."""
@@ -219,13 +236,31 @@ pass finds free sides; the construction's final LP grows them back as far as the
 MAX_SHRINK = 0.92
 
 
-def generate_geometry(spec: Spec, rng: random.Random, *, shrink: float | None = None) -> dict[str, Rect]:
+DRAWS = 3
+"""Greedy placements drawn per seed geometry; the one with the fewest defects is kept."""
+
+
+def generate_geometry(spec: Spec, rng: random.Random, *, shrink: float | None = None,
+                      draws: int = DRAWS) -> dict[str, Rect]:
     """A seed geometry for the construction's repair, grown from the room graph alone.
 
     Every adjacency of the spec is, where the greedy choice could manage it, a touching
-    contact with one wall thickness between the rooms; overlaps are few. Different draws of
-    `rng` give different arrangements.
+    contact with one wall thickness between the rooms; overlaps are few. `draws` placements
+    are drawn from `rng` and the one with the least overlap and missing contact is kept
+    (measured: the repair's time grows with those defects). Different draws of `rng` give
+    different arrangements.
     """
+    best: tuple[float, dict[str, Rect]] | None = None
+    for _ in range(max(1, draws)):
+        geometry, defect = _draw_geometry(spec, rng, shrink)
+        if best is None or defect < best[0]:
+            best = (defect, geometry)
+    assert best is not None
+    return best[1]
+
+
+def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None) -> tuple[dict[str, Rect], float]:
+    """One greedy placement plus rip-up-and-replace: (geometry, its total defect)."""
     boundary = spec.boundary
     assert boundary is not None
     width, height = boundary.w, boundary.h
@@ -282,20 +317,41 @@ def generate_geometry(spec: Spec, rng: random.Random, *, shrink: float | None = 
                                                  if n in area], sides, neighbours[room_id])
         foreign = []
         for other, rect in geometry.items():
-            if other in neighbours[room_id]:
-                continue  # its reserved space is where this room belongs
+            # neighbours too: a corridor that touches another along its whole side takes
+            # the side the other's rooms need; touching at its end costs little of it
             depth = _halo_depth(rect[2:], [area[n] for n in neighbours[other] if n in area],
                                 sides, neighbours[other])
             if depth > 0:
                 foreign.append(_grow(np.array(rect), depth))
+        # cycle partners: placed rooms that share an unplaced neighbour with this one; that
+        # neighbour will have to touch both, so this room should land within its reach
+        partners = {}
+        for n in neighbours[room_id]:
+            if n in geometry:
+                continue
+            for p in neighbours[n]:
+                if p in geometry:
+                    partners[p] = max(partners.get(p, 0.0), sides[n][1])
         put(room_id, _best_place(room_id, placement, sides[room_id], neighbours[room_id],
                                  walls, geometry, on_boundary[room_id], rng, own_depth,
-                                 np.array(foreign).reshape(-1, 4)))
+                                 np.array(foreign).reshape(-1, 4), partners))
     fixed = set(_fixed_points(spec))
+    if not fixed and len(placement.rects):
+        # the building grew from a drawn first room and may stick out on one side while
+        # there is room on the other: shift it (as a whole) into the boundary where it fits
+        x0, y0, x1, y1 = placement.bbox()
+        dx = -x0 if x1 - x0 > width else max(-x0, min(0.0, width - x1))
+        dy = -y0 if y1 - y0 > height else max(-y0, min(0.0, height - y1))
+        if dx or dy:
+            shift = np.array([dx, dy, 0.0, 0.0])
+            placement.rects += shift
+            placement.blockers[len(placement.blockers) - len(placement.rects):] += shift
+            for room_id, (x, y, w, h) in geometry.items():
+                geometry[room_id] = (x + dx, y + dy, w, h)
     for _ in range(REPLACE_PASSES):
         if not _replace_worst(geometry, placement, sides, neighbours, walls, on_boundary, fixed):
             break
-    return geometry
+    return geometry, sum(_room_defects(geometry, placement, neighbours, walls).values())
 
 
 REPLACE_PASSES = 4
@@ -305,18 +361,25 @@ REPLACE_PASSES = 4
 def _room_defects(geometry: dict[str, Rect], placement: _Placement,
                   neighbours: dict[str, list[str]], walls: dict[frozenset[str], float]) -> dict[str, float]:
     """Per room: its overlap (m², walls included), area outside, and contact shortfalls."""
-    rects = placement.rects
-    defects = {}
-    for index, room_id in enumerate(placement.ids):
-        others = np.delete(placement.blockers, _blocker_index(placement, index), axis=0)
-        cand = rects[index:index + 1]
-        value = OVERLAP_WEIGHT * (_overlap_area(cand, others, placement.walldim - 1e-9)[0]
-                                  + _outside_area(cand, placement.width, placement.height)[0])
-        for n in neighbours[room_id]:
-            value += CONTACT_WEIGHT * _contact_shortfall(
-                cand, np.array(geometry[n]), placement.walldim, walls[frozenset((room_id, n))])[0]
-        defects[room_id] = float(value)
-    return defects
+    rects, blockers = placement.rects, placement.blockers
+    pad = placement.walldim - 1e-9
+    ox = (np.minimum(rects[:, None, 0] + rects[:, None, 2] + pad, blockers[None, :, 0] + blockers[None, :, 2])
+          - np.maximum(rects[:, None, 0] - pad, blockers[None, :, 0]))
+    oy = (np.minimum(rects[:, None, 1] + rects[:, None, 3] + pad, blockers[None, :, 1] + blockers[None, :, 3])
+          - np.maximum(rects[:, None, 1] - pad, blockers[None, :, 1]))
+    overlap = np.clip(ox, 0, None) * np.clip(oy, 0, None)
+    own = np.arange(len(rects))
+    overlap[own, own + len(blockers) - len(rects)] = 0.0  # a room does not overlap itself
+    values = OVERLAP_WEIGHT * (overlap.sum(axis=1)
+                               + _outside_area(rects, placement.width, placement.height))
+    index = {room_id: i for i, room_id in enumerate(placement.ids)}
+    for pair, wall in walls.items():
+        a, b = tuple(pair)
+        shortfall = CONTACT_WEIGHT * _contact_shortfall(
+            rects[index[a]:index[a] + 1], rects[index[b]], placement.walldim, wall)[0]
+        values[index[a]] += shortfall
+        values[index[b]] += shortfall
+    return {room_id: float(values[i]) for room_id, i in index.items()}
 
 
 def _blocker_index(placement: _Placement, room_index: int) -> int:
@@ -396,7 +459,8 @@ def _grow(rects: np.ndarray, depth: float) -> np.ndarray:
 def _best_place(room_id: str, placement: _Placement, sides: tuple[float, float],
                 room_neighbours: list[str], walls: dict[frozenset[str], float],
                 geometry: dict[str, Rect], on_boundary: bool, rng: random.Random,
-                own_depth: float, foreign_halos: np.ndarray) -> Rect:
+                own_depth: float, foreign_halos: np.ndarray,
+                partners: dict[str, float] | None = None) -> Rect:
     """Where the room goes: the seeded pick among the best-scored candidate rectangles.
 
     Besides overlaps, a candidate pays (at HALO_WEIGHT) for the band of `own_depth` around
@@ -426,9 +490,14 @@ def _best_place(room_id: str, placement: _Placement, sides: tuple[float, float],
     for n in placed_neighbours:
         wall = walls[frozenset((room_id, n))]
         score += CONTACT_WEIGHT * _contact_shortfall(cands, np.array(geometry[n]), walldim, wall)
-    score += COMPACT_WEIGHT * _bbox_growth(cands, placement.bbox())
+    score += COMPACT_WEIGHT * _bbox_growth(cands, placement.bbox(), width, height)
     if on_boundary:
         score += BOUNDARY_WEIGHT * _boundary_distance(cands, width, height)
+    for partner, reach in (partners or {}).items():
+        px, py, pw, ph = geometry[partner]
+        gap = np.maximum(np.maximum(px - cands[:, 0] - cands[:, 2], cands[:, 0] - px - pw),
+                         np.maximum(py - cands[:, 1] - cands[:, 3], cands[:, 1] - py - ph))
+        score += CYCLE_WEIGHT * np.clip(gap - reach - 2 * walldim, 0, None)
     order = np.argsort(score, kind="stable")
     best = score[order[0]]
     scale = max(1.0, abs(best), (sides[0] + sides[1]) * COMPACT_WEIGHT)
