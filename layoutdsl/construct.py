@@ -768,13 +768,13 @@ SHRINK_ORDER: tuple[bool | float, ...] = (False, True)
 GRAPH_MAX_STALLS = 1
 """Rounds without progress after which a generated or spring geometry is given up."""
 
-GENERATED_TRIES = 12
+GENERATED_TRIES = 24
 """Greedy contact placements (layoutdsl.generate) tried after the hint geometries."""
 
-GENERATED_TRY_SECONDS = 4.0
+GENERATED_TRY_SECONDS = 2.5
 """Least time the repair of one generated geometry gets."""
 
-GENERATED_TRY_SHARE = 0.35
+GENERATED_TRY_SHARE = 0.1
 """Share of the time left the repair of one generated geometry gets, when that is more."""
 
 GRAPH_TRIES = 12

@@ -337,11 +337,12 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None) -> tupl
                                  np.array(foreign).reshape(-1, 4), partners))
     fixed = set(_fixed_points(spec))
     if not fixed and len(placement.rects):
-        # the building grew from a drawn first room and may stick out on one side while
-        # there is room on the other: shift it (as a whole) into the boundary where it fits
+        # the building grew from a drawn first room and may stick out on one side, or
+        # touch it, while there is room on the other: centre it (as a whole) in the
+        # boundary, so the repair has slack on every side to push conflicts out into
         x0, y0, x1, y1 = placement.bbox()
-        dx = -x0 if x1 - x0 > width else max(-x0, min(0.0, width - x1))
-        dy = -y0 if y1 - y0 > height else max(-y0, min(0.0, height - y1))
+        dx = (width - x1 - x0) / 2
+        dy = (height - y1 - y0) / 2
         if dx or dy:
             shift = np.array([dx, dy, 0.0, 0.0])
             placement.rects += shift
