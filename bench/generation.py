@@ -18,6 +18,7 @@ depend on the machine and its load; say so when quoting them.
     python bench/generation.py [FOLDER] [--time-limit 60] [--only PATTERN] [--seed 0]
                                [--json] [--out FILE]
     python bench/generation.py --throughput school_wilbraham [--minutes 1] [--workers 2]
+    python bench/generation.py --variants 5 --only Sabadell3,Neulengbach1,wilbraham
 """
 
 from __future__ import annotations
@@ -242,6 +243,46 @@ def throughput(path: Path, minutes: float, workers: int, time_limit: float) -> d
     }
 
 
+def _variants_of_plan(path: str, n: int, seed: int, time_limit: float, workers: int) -> dict:
+    """compile --variants N of one plan (graph source): per variant its difference from the
+    original, area and fill; pairwise differences."""
+    from layoutdsl.solve import SolveOptions
+    from layoutdsl.variants import compile_variants
+
+    spec, area, original_fill, centres = _original(Path(path))
+    began = time.monotonic()
+    result = compile_variants(spec, n, seed=seed, workers=workers,
+                              options=SolveOptions(time_limit=time_limit, quiet=True))
+    rows = []
+    for index, layout in enumerate(result.layouts, start=1):
+        row = {"variant": index}
+        if layout is not None:
+            row.update(_layout_row(spec, layout, area, original_fill, centres))
+        rows.append(row)
+    pairs = sorted(result.differences.values())
+    return {"rooms": len(spec.rooms), "seconds": round(time.monotonic() - began, 2),
+            "variants": rows, "pairwise_min": round(pairs[0], 4) if pairs else None,
+            "pairwise_median": round(statistics.median(pairs), 4) if pairs else None,
+            "pairwise": [round(v, 4) for v in pairs]}
+
+
+def format_variants(plan: str, result: dict) -> str:
+    lines = [f"{plan} ({result.get('rooms')} rooms, {result.get('seconds')} s): pairwise min "
+             f"{result.get('pairwise_min')}, median {result.get('pairwise_median')}"]
+    for row in result.get("variants", []):
+        if not row.get("verified"):
+            lines.append(f"  variant {row['variant']}: no layout")
+            continue
+        area_ok, fill_ok = meets(row)
+        lines.append(f"  variant {row['variant']}: difference {row['difference']:.3f}, area "
+                     f"{row['area_ratio']:.3f}{'' if area_ok else ' (outside +-15 %)'}, fill "
+                     f"{row['fill']:.3f} vs original {row['original_fill']:.3f}"
+                     f"{'' if fill_ok else ' (below 0.8 x)'}")
+    if result.get("error"):
+        lines.append(f"  {result['error']}")
+    return "\n".join(lines)
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -253,6 +294,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--throughput", metavar="PLAN", help="variants-per-minute run on this plan instead")
     parser.add_argument("--minutes", type=float, default=1.0, help="throughput run length (default 1)")
     parser.add_argument("--workers", type=int, default=2, help="throughput processes (default 2)")
+    parser.add_argument("--variants", type=int, metavar="N",
+                        help="compile N graph variants of each plan (--only) instead of one layout")
     parser.add_argument("--json", action="store_true", help="print JSON rows instead of the table")
     parser.add_argument("--out", type=Path, help="also write the table (or JSON) to this file")
     args = parser.parse_args(argv)
@@ -263,7 +306,16 @@ def main(argv: list[str] | None = None) -> int:
         print(text, flush=True)
         lines.append(text)
 
-    if args.throughput:
+    if args.variants:
+        for path in sorted(args.folder.glob("*.xml")):
+            if args.only and not any(fnmatch.fnmatch(path.name, pattern) or pattern in path.name
+                                     for pattern in args.only.split(",")):
+                continue
+            result = isolated(_variants_of_plan, str(path), args.variants, args.seed,
+                              args.time_limit, args.workers, limit=args.time_limit * args.variants)
+            emit(json.dumps({"plan": path.stem, **result}) if args.json
+                 else format_variants(path.stem, result))
+    elif args.throughput:
         matches = sorted(p for p in args.folder.glob("*.xml") if args.throughput in p.name)
         if not matches:
             print(f"no plan matching `{args.throughput}` in {args.folder}", file=sys.stderr)
