@@ -3,7 +3,7 @@
 Every spec in specs/ must be feasible, so it is built from a layout that is known to
 satisfy it: rooms are placed by hand below (metres, bottom-left corners, 0.2 m walls),
 the spec's bounds are derived around the planted sizes, and the planted layout is checked
-with the independent verifier (`layoutdsl.verify`) before the spec is written. The
+with the independent verifier (`layoutdsl.layout.verify`) before the spec is written. The
 Figure 4.2 school keeps the thesis' numbers; only its placement and adjacencies are ours.
 
     python bench/planted_specs.py            # verify every planted layout
@@ -17,7 +17,7 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
-from layoutdsl.ast import (
+from layoutdsl.syntax.ast import (
     Adjacency,
     Boundary,
     Cluster,
@@ -30,11 +30,11 @@ from layoutdsl.ast import (
     Settings,
     Spec,
 )
-from layoutdsl.atomic import write_text_atomic
+from layoutdsl.emit.atomic import write_text_atomic
 from layoutdsl.check import check_spec
-from layoutdsl.format import format_spec
+from layoutdsl.syntax.format import format_spec
 from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, make_portal
-from layoutdsl.verify import verify
+from layoutdsl.layout.verify import verify
 
 SPECS = Path(__file__).resolve().parent.parent / "specs"
 

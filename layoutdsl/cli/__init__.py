@@ -11,7 +11,8 @@ import importlib
 import os
 import sys
 
-from layoutdsl import __version__, exitcodes
+from layoutdsl import __version__
+from layoutdsl.diagnostics import exitcodes
 
 # command name -> (module under layoutdsl.cli, one-line help), in the order --help lists them.
 # The one-line help lives here so `layoutdsl --help` need not import every command.

@@ -11,7 +11,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from layoutdsl import exitcodes
+from layoutdsl.diagnostics import exitcodes
 from layoutdsl.cli.argtypes import non_negative_float, non_negative_int, positive_float, positive_int
 
 EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
@@ -66,7 +66,7 @@ def add_parser(subparsers) -> None:
 
 
 def _print_diagnostics(diagnostics, sources, style: str) -> None:
-    from layoutdsl import render
+    from layoutdsl.diagnostics import render
 
     if not diagnostics:
         return
@@ -89,7 +89,7 @@ def run(args: argparse.Namespace) -> int:
     """Compile one spec; exit 0 with a layout, 1 spec errors, 2 usage/I/O, 3 no layout."""
     from layoutdsl.api import lint_source, read_source
     from layoutdsl.diagnostics import has_errors
-    from layoutdsl.source import Source
+    from layoutdsl.diagnostics.source import Source
 
     try:
         if args.spec == "-":
@@ -131,7 +131,7 @@ def run(args: argparse.Namespace) -> int:
     if args.variants:
         return _run_variants(spec, args, options, outdir, formats)
 
-    from layoutdsl.compiler import compile_spec
+    from layoutdsl.compile.pipeline import compile_spec
 
     if not args.quiet:
         print(f"compiling `{spec.name}`: {len(spec.rooms)} rooms, time limit {options.time_limit:g} s",
@@ -168,7 +168,7 @@ def write_layout_files(layout, outdir: Path, stem: str, formats, *, robot_room: 
     try:
         from layoutdsl.emit import render_outputs, write_rendered
     except ImportError:
-        from layoutdsl.atomic import write_files_atomic
+        from layoutdsl.emit.atomic import write_files_atomic
 
         outdir.mkdir(parents=True, exist_ok=True)
         return write_files_atomic({outdir / name: data for name, data in files.items()})
@@ -230,9 +230,9 @@ def summary(spec, layout, written: list[Path]) -> str:
 def _run_variants(spec, args, options, outdir: Path, formats) -> int:
     """--variants N: the construction helper's compile_variants writes NAME-1.* ... NAME-N.*."""
     try:
-        from layoutdsl.variants import compile_variants
+        from layoutdsl.compile.variants import compile_variants
     except ImportError:
-        return _error("--variants is not available in this build (layoutdsl.variants is missing)")
+        return _error("--variants is not available in this build (layoutdsl.compile.variants is missing)")
     try:
         result = compile_variants(spec, args.variants, seed=options.seed, options=options,
                                   outdir=outdir, formats=formats, robot_room=args.robot_room)

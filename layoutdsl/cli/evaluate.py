@@ -10,7 +10,7 @@ import argparse
 import sys
 import time
 
-from layoutdsl import exitcodes
+from layoutdsl.diagnostics import exitcodes
 from layoutdsl.cli.argtypes import non_negative_float, positive_float
 from layoutdsl.diagnostics import has_errors
 from layoutdsl.evaluate.explore import ExploreSettings
@@ -62,8 +62,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 def _read_plans(paths: list[str]):
     from layoutdsl.importer import read_building
-    from layoutdsl.render import render_full
-    from layoutdsl.source import Source
+    from layoutdsl.diagnostics.render import render_full
+    from layoutdsl.diagnostics.source import Source
 
     buildings, diagnostics, sources = [], [], {}
     for path in paths:

@@ -12,11 +12,11 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
-from layoutdsl import exitcodes
+from layoutdsl.diagnostics import exitcodes
 from layoutdsl.diagnostics import Diagnostic, has_errors
 from layoutdsl.importer import ImportOptions, import_building
 from layoutdsl.importer import codes as import_codes
-from layoutdsl.source import Source
+from layoutdsl.diagnostics.source import Source
 
 _DEFAULTS = ImportOptions()
 
@@ -79,7 +79,7 @@ def add_parser(subparsers) -> None:
 
 
 def _print_diagnostics(diagnostics: list[Diagnostic], sources: dict[str, Source], style: str) -> None:
-    from layoutdsl import render
+    from layoutdsl.diagnostics import render
 
     if not diagnostics and style != "json":
         return
@@ -95,8 +95,8 @@ def _print_diagnostics(diagnostics: list[Diagnostic], sources: dict[str, Source]
 def run(args: argparse.Namespace) -> int:
     """Import one plan; 0 on success (warnings allowed), 1 on errors, 2 on usage/I/O errors."""
     from layoutdsl.api import lint_source
-    from layoutdsl.atomic import write_text_atomic
-    from layoutdsl.format import format_spec
+    from layoutdsl.emit.atomic import write_text_atomic
+    from layoutdsl.syntax.format import format_spec
 
     try:
         options = ImportOptions(

@@ -10,7 +10,7 @@ Each emitter reads only a `Layout` (never Pyomo objects) and writes its files at
 | `map`   | `STEM.pgm` + `STEM.yaml` (ROS map_server) | `layoutdsl.emit.rosmap` |
 
 `write_outputs` renders every requested format in memory first and then writes the whole
-set with `layoutdsl.atomic.write_files_atomic`, so a failure anywhere leaves none of the
+set with `layoutdsl.emit.atomic.write_files_atomic`, so a failure anywhere leaves none of the
 call's files behind.
 """
 
@@ -19,9 +19,9 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 
-from layoutdsl.atomic import write_files_atomic
+from layoutdsl.emit.atomic import write_files_atomic
 from layoutdsl.layout import Layout
-from layoutdsl.raster import DEFAULT_RESOLUTION
+from layoutdsl.emit.raster import DEFAULT_RESOLUTION
 
 DEFAULT_FORMATS = ("xml", "png", "world", "map")
 

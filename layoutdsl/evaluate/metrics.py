@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from layoutdsl.building import Building
+from layoutdsl.importer.building import Building
 from layoutdsl.evaluate.topology import room_ids
 
 

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import networkx as nx
 
-from layoutdsl.building import Building
+from layoutdsl.importer.building import Building
 
 _SPEC_ID = re.compile(r"^([A-Z])(\d+)$")
 

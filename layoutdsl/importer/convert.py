@@ -23,11 +23,11 @@ import re
 from dataclasses import dataclass
 from pathlib import PurePath
 
-from layoutdsl.ast import Adjacency, Boundary, Hint, Room, Settings, Spec
-from layoutdsl.building import Building, Space, polygon_area
+from layoutdsl.syntax.ast import Adjacency, Boundary, Hint, Room, Settings, Spec
+from layoutdsl.importer.building import Building, Space, polygon_area
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.importer import codes
-from layoutdsl.source import Span
+from layoutdsl.diagnostics.source import Span
 
 # The label a space gets when its <label> is empty.
 _DEFAULT_LABELS = {"R": "ROOM", "C": "CORRIDOR", "E": "ENTRANCE"}

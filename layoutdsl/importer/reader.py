@@ -23,10 +23,10 @@ from xml.etree.ElementTree import Element
 from defusedxml import DefusedXmlException, DTDForbidden, EntitiesForbidden
 from defusedxml.ElementTree import DefusedXMLParser, ParseError
 
-from layoutdsl.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space, polygon_area
+from layoutdsl.importer.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space, polygon_area
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.importer import codes
-from layoutdsl.source import Span
+from layoutdsl.diagnostics.source import Span
 
 ROOM_TYPES = ("R", "C", "E")
 PORTAL_TYPES = ("EXPLICIT", "IMPLICIT")

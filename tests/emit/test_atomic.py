@@ -9,7 +9,7 @@ import pytest
 from _emit_support import load_case
 
 import layoutdsl.emit as emit
-from layoutdsl.atomic import write_files_atomic, write_text_atomic
+from layoutdsl.emit.atomic import write_files_atomic, write_text_atomic
 from layoutdsl.emit import EMITTERS, EmitError, write_outputs
 
 

@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 from PIL import Image, ImageDraw
 
-from layoutdsl.building import Building
+from layoutdsl.importer.building import Building
 from layoutdsl.importer import read_building
-from layoutdsl.raster import OccupancyGrid, rasterize_building
+from layoutdsl.emit.raster import OccupancyGrid, rasterize_building
 
 # shared/ sits beside the repository, in the working tree and in CI's fresh clone alike
 PLANS = sorted((Path(__file__).resolve().parents[3] / "shared" / "floorplans").glob("*.xml"))

@@ -8,7 +8,7 @@ import networkx as nx
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from layoutdsl.ast import Adjacency, Boundary, Room, Spec
+from layoutdsl.syntax.ast import Adjacency, Boundary, Room, Spec
 from layoutdsl.check import _planarity_core, check_spec, reachable_ratios
 
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import pytest
 from lark.exceptions import UnexpectedInput
 
-from layoutdsl import parser
-from layoutdsl.parser import SYNTAX_ERRORS, get_parser, name_syntax_error, parse_source
-from layoutdsl.source import Source
+from layoutdsl.syntax import parser
+from layoutdsl.syntax.parser import SYNTAX_ERRORS, get_parser, name_syntax_error, parse_source
+from layoutdsl.diagnostics.source import Source
 
 EXAMPLES = [
     (code, rule, example)
@@ -120,7 +120,7 @@ def test_every_syntax_error_is_reported_not_only_the_first() -> None:
 
 
 def test_grammar_is_found_inside_an_installed_package(tmp_path) -> None:
-    """A wheel has the grammar at layoutdsl/grammar/ (pyproject force-include), no top-level copy."""
+    """A wheel has the grammar beside the parser, at layoutdsl/syntax/layout.lark."""
     import shutil
     import subprocess
     import sys
@@ -129,9 +129,8 @@ def test_grammar_is_found_inside_an_installed_package(tmp_path) -> None:
     root = Path(__file__).resolve().parents[2]
     package = tmp_path / "site" / "layoutdsl"
     shutil.copytree(root / "layoutdsl", package, ignore=shutil.ignore_patterns("__pycache__"))
-    shutil.copytree(root / "grammar", package / "grammar")
     code = (
-        "import layoutdsl.parser as p, sys; from layoutdsl.source import Source; "
+        "import layoutdsl.syntax.parser as p, sys; from layoutdsl.diagnostics.source import Source; "
         "spec, d = p.parse_source(Source('x.lay', 'rooms\\nR0 4 6 5 3 5 4 1 2 R A\\n\\nboundary\\n12 14\\n')); "
         "print(p._grammar_path()); sys.exit(0 if spec and not d else 1)"
     )
@@ -140,4 +139,4 @@ def test_grammar_is_found_inside_an_installed_package(tmp_path) -> None:
         env={"PYTHONPATH": str(tmp_path / "site")},
     )  # fmt: skip
     assert result.returncode == 0, result.stderr
-    assert result.stdout.strip() == str(package / "grammar" / "layout.lark")
+    assert result.stdout.strip() == str(package / "syntax" / "layout.lark")

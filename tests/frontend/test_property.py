@@ -9,10 +9,10 @@ from hypothesis import strategies as st
 
 from layoutdsl.api import lint_source
 from layoutdsl.diagnostics import Diagnostic
-from layoutdsl.format import format_source, format_spec
-from layoutdsl.parser import parse_source
-from layoutdsl.render import render_concise, render_full, render_json
-from layoutdsl.source import Source
+from layoutdsl.syntax.format import format_source, format_spec
+from layoutdsl.syntax.parser import parse_source
+from layoutdsl.diagnostics.render import render_concise, render_full, render_json
+from layoutdsl.diagnostics.source import Source
 
 ROOT = Path(__file__).resolve().parents[2]
 SEEDS = [p.read_text(encoding="utf-8") for p in sorted((ROOT / "specs").glob("*.lay"))]

@@ -7,8 +7,8 @@ from pathlib import Path
 
 from layoutdsl.api import lint_source
 from layoutdsl.diagnostics import load_all_codes
-from layoutdsl.format import format_source
-from layoutdsl.source import Source
+from layoutdsl.syntax.format import format_source
+from layoutdsl.diagnostics.source import Source
 
 README = Path(__file__).resolve().parents[2] / "README.md"
 START, END = "<!-- codes:start -->", "<!-- codes:end -->"

@@ -8,10 +8,10 @@ from pathlib import Path
 import pytest
 
 from layoutdsl.api import lint_source, read_source
-from layoutdsl.ast import Adjacency, Boundary, Room, Settings, Spec
-from layoutdsl.format import format_number, format_source, format_spec, safe_label
-from layoutdsl.parser import parse_source
-from layoutdsl.source import Source
+from layoutdsl.syntax.ast import Adjacency, Boundary, Room, Settings, Spec
+from layoutdsl.syntax.format import format_number, format_source, format_spec, safe_label
+from layoutdsl.syntax.parser import parse_source
+from layoutdsl.diagnostics.source import Source
 
 ROOT = Path(__file__).resolve().parents[2]
 SPEC_FILES = sorted((ROOT / "specs").glob("*.lay")) + sorted((ROOT / "tests").rglob("*.lay"))
@@ -104,7 +104,7 @@ def test_comments_travel_with_their_lines() -> None:
 from hypothesis import given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
-from layoutdsl.ast import ClusterMember, Cluster, Connection, Hint, Obstacle, Position  # noqa: E402
+from layoutdsl.syntax.ast import ClusterMember, Cluster, Connection, Hint, Obstacle, Position  # noqa: E402
 
 _numbers = st.floats(allow_nan=False, allow_infinity=False, width=64)
 _weights = st.floats(0, 1e6)  # the language accepts only non-negative weights

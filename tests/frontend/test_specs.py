@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 
 from layoutdsl.check import check_spec
-from layoutdsl.format import format_spec
-from layoutdsl.verify import verify
+from layoutdsl.syntax.format import format_spec
+from layoutdsl.layout.verify import verify
 
 ROOT = Path(__file__).resolve().parents[2]
 _spec = importlib.util.spec_from_file_location("planted_specs", ROOT / "bench" / "planted_specs.py")

@@ -19,9 +19,9 @@ import pytest
 
 from layoutdsl.api import lint_source
 from layoutdsl.diagnostics import has_errors
-from layoutdsl.format import format_spec
+from layoutdsl.syntax.format import format_spec
 from layoutdsl.importer import import_building, original_room_area, read_building
-from layoutdsl.source import Source
+from layoutdsl.diagnostics.source import Source
 
 CORPUS = Path(__file__).parents[2] / ".." / "shared" / "floorplans"
 PLANS = sorted(CORPUS.glob("*.xml"))

@@ -9,7 +9,7 @@ from _import_plans import PlanSpace, plan_xml, rect
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from layoutdsl.building import Point
+from layoutdsl.importer.building import Point
 from layoutdsl.diagnostics import CODES
 from layoutdsl.importer import import_building, read_building
 

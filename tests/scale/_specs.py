@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from layoutdsl.ast import Adjacency, Boundary, Room, Spec
+from layoutdsl.syntax.ast import Adjacency, Boundary, Room, Spec
 
 
 def room(room_id: str, w: float, h: float, *, rtype: str = "R", var: float = 0.3,

@@ -8,13 +8,13 @@ from pathlib import Path
 
 import pytest
 
-from layoutdsl.ast import Boundary, Cluster, ClusterMember, Hint, Obstacle, Position
-from layoutdsl.construct import (
+from layoutdsl.syntax.ast import Boundary, Cluster, ClusterMember, Hint, Obstacle, Position
+from layoutdsl.compile.construct import (
     construct_start,
     hard_violations,
     rects_to_layout,
 )
-from layoutdsl.verify import verify
+from layoutdsl.layout.verify import verify
 
 from ._specs import adjacent, cycle_spec, room, tree_spec
 

@@ -5,9 +5,9 @@ from __future__ import annotations
 import json
 import time
 
-from layoutdsl.compiler import compile_spec
-from layoutdsl.construct import construct_start, rects_to_layout
-from layoutdsl.cycles import (
+from layoutdsl.compile.pipeline import compile_spec
+from layoutdsl.compile.construct import construct_start, rects_to_layout
+from layoutdsl.compile.cycles import (
     compile_with_cycles,
     cycle_cluster,
     cycle_rank,
@@ -15,8 +15,8 @@ from layoutdsl.cycles import (
     subproblem,
 )
 from layoutdsl.solve import SolveOptions
-from layoutdsl.variants import compile_variants, diversity
-from layoutdsl.verify import verify
+from layoutdsl.compile.variants import compile_variants, diversity
+from layoutdsl.layout.verify import verify
 
 from ._specs import adjacent, cycle_spec, room, tree_spec
 from dataclasses import replace

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from layoutdsl.ast import Adjacency, Boundary, Cluster, ClusterMember, Connection, Obstacle, Position, Room, Settings, Spec
+from layoutdsl.syntax.ast import Adjacency, Boundary, Cluster, ClusterMember, Connection, Obstacle, Position, Room, Settings, Spec
 
 Rect = tuple[float, float, float, float]
 

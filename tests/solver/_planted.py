@@ -7,7 +7,7 @@ planted extent.
 
 from __future__ import annotations
 
-from layoutdsl.ast import Adjacency, Boundary, Room, Settings, Spec
+from layoutdsl.syntax.ast import Adjacency, Boundary, Room, Settings, Spec
 
 Rect = tuple[float, float, float, float]
 

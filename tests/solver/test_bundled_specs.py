@@ -6,7 +6,7 @@ from pathlib import Path
 
 import pytest
 
-from layoutdsl.verify import verify
+from layoutdsl.layout.verify import verify
 
 SPECS_DIR = Path(__file__).resolve().parents[2] / "specs"
 SPEC_NAMES = sorted(path.stem for path in SPECS_DIR.glob("*.lay"))

@@ -5,12 +5,12 @@ from __future__ import annotations
 from pathlib import Path
 
 from layoutdsl.api import read_source, lint_source
-from layoutdsl.compiler import compile_spec
-from layoutdsl.explain import E901, conflicting_groups, constraint_groups, scip_feasibility, spec_without
+from layoutdsl.compile.pipeline import compile_spec
+from layoutdsl.compile.explain import E901, conflicting_groups, constraint_groups, scip_feasibility, spec_without
 from layoutdsl.solve import SolveOptions
 
 from ._cases import room, spec
-from layoutdsl.ast import Adjacency, Position
+from layoutdsl.syntax.ast import Adjacency, Position
 
 SOLVE = Path(__file__).resolve().parents[1] / "diagnostics" / "solve"
 

@@ -6,10 +6,10 @@ from __future__ import annotations
 
 import pytest
 
-from layoutdsl.compiler import layout_from_rects
+from layoutdsl.compile.pipeline import layout_from_rects
 from layoutdsl.model import build_model, rects_from_model
 from layoutdsl.solve import SolveOptions, solve
-from layoutdsl.verify import verify
+from layoutdsl.layout.verify import verify
 
 from ._cases import CASES, Case
 

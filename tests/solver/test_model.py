@@ -5,7 +5,7 @@ from __future__ import annotations
 import pyomo.environ as pyo
 from pyomo.repn import generate_standard_repn
 
-from layoutdsl.ast import Adjacency, Position
+from layoutdsl.syntax.ast import Adjacency, Position
 from layoutdsl.model import CONSTRAINT_FAMILIES, THESIS_AS_WRITTEN, build_model
 
 from ._cases import room, spec

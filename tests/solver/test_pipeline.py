@@ -10,9 +10,9 @@ from pathlib import Path
 
 import pytest
 
-from layoutdsl import exitcodes
-from layoutdsl.ast import Adjacency
-from layoutdsl.compiler import compile_spec, layout_from_rects
+from layoutdsl.diagnostics import exitcodes
+from layoutdsl.syntax.ast import Adjacency
+from layoutdsl.compile.pipeline import compile_spec, layout_from_rects
 from layoutdsl.model import (
     THESIS_AS_WRITTEN,
     Formulation,
@@ -23,7 +23,7 @@ from layoutdsl.model import (
     warm_start_from_rects,
 )
 from layoutdsl.solve import SolveOptions, polish, solve
-from layoutdsl.verify import verify
+from layoutdsl.layout.verify import verify
 
 from ._cases import room, spec
 

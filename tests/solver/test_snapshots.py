@@ -15,11 +15,12 @@ from pathlib import Path
 
 import pytest
 
-from layoutdsl import explain, exitcodes
+from layoutdsl.compile import explain
+from layoutdsl.diagnostics import exitcodes
 from layoutdsl.api import lint_source, read_source
 from layoutdsl.layout import Layout
-from layoutdsl.render import render_full
-from layoutdsl.verify import verify
+from layoutdsl.diagnostics.render import render_full
+from layoutdsl.layout.verify import verify
 
 ROOT = Path(__file__).resolve().parents[2]
 SNAPSHOTS = Path("tests/diagnostics/solve")

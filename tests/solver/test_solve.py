@@ -7,7 +7,7 @@ import math
 import pyomo.environ as pyo
 import pytest
 
-from layoutdsl.ast import Settings
+from layoutdsl.syntax.ast import Settings
 from layoutdsl.model import build_model
 from layoutdsl.solve import SolveOptions, _add_start, _translate, relative_gap, solve
 

@@ -6,9 +6,9 @@ from dataclasses import replace
 
 import pytest
 
-from layoutdsl import ast
+from layoutdsl.syntax import ast
 from layoutdsl.layout import Layout, PlacedRoom, make_portal, shared_wall
-from layoutdsl.verify import verify
+from layoutdsl.layout.verify import verify
 
 WALL = 0.2
 

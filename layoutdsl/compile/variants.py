@@ -22,7 +22,7 @@ from dataclasses import dataclass, replace
 from itertools import combinations
 from pathlib import Path
 
-from layoutdsl.ast import Position, Spec
+from layoutdsl.syntax.ast import Position, Spec
 from layoutdsl.layout import Layout
 
 MAX_WORKERS = 2
@@ -112,8 +112,8 @@ def _solve_variant(job: tuple[int, int, object, tuple[str, float, float] | None]
 
 
 def _compile_variant(spec: Spec, index: int, seed: int, options, point):
-    from layoutdsl.compiler import compile_spec
-    from layoutdsl.construct import construct_start
+    from layoutdsl.compile.pipeline import compile_spec
+    from layoutdsl.compile.construct import construct_start
 
     variant_seed = seed + index - 1
     began = time.monotonic()
@@ -197,7 +197,7 @@ def _write(
     spec: Spec, layouts: list[Layout | None], outdir: Path, formats, robot_room
 ) -> list[Path]:
     """NAME-k.layout.json plus the emitters' files for each variant that has a layout."""
-    from layoutdsl.atomic import write_text_atomic
+    from layoutdsl.emit.atomic import write_text_atomic
     from layoutdsl.emit import DEFAULT_FORMATS, write_outputs
 
     outdir.mkdir(parents=True, exist_ok=True)

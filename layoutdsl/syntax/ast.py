@@ -12,7 +12,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
-from layoutdsl.source import Span
+from layoutdsl.diagnostics.source import Span
 
 _NO_SPANS: Mapping[str, Span] = MappingProxyType({})
 

@@ -26,7 +26,7 @@ from pyomo.common.timing import HierarchicalTimer
 from pyomo.contrib.solver.solvers.scip.scip_direct import ScipDirect
 from pyscipopt import SCIP_EVENTTYPE, SCIP_PARAMEMPHASIS, SCIP_PARAMSETTING, Eventhdlr
 
-from layoutdsl.ast import Settings
+from layoutdsl.syntax.ast import Settings
 from layoutdsl.model import Formulation
 
 EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")

@@ -18,8 +18,8 @@ import re
 from collections.abc import Mapping
 from dataclasses import fields
 
-from layoutdsl.ast import Settings, Spec
-from layoutdsl.source import Source
+from layoutdsl.syntax.ast import Settings, Spec
+from layoutdsl.diagnostics.source import Source
 
 _DEFAULT_SETTINGS = Settings()
 SETTINGS_ORDER = (
@@ -75,7 +75,7 @@ def _settings_lines(spec: Spec) -> list[tuple[str, int | None]]:
     settings = spec.settings
     spans = settings.spans or {}
     lines: list[tuple[str, int | None]] = []
-    from layoutdsl.parser import spec_name_for  # local: the parser imports this module's users
+    from layoutdsl.syntax.parser import spec_name_for  # local: the parser imports this module's users
 
     def origin(key: str) -> int | None:
         span = spans.get(key)
@@ -174,7 +174,7 @@ def format_source(source: Source) -> str | None:
     room stays above it when sections are reordered); a comment after the values of a line stays
     at the end of that line. Comments after the last line stay at the end of the file.
     """
-    from layoutdsl.parser import _comment_column, _split_lines, parse_source, split_sections
+    from layoutdsl.syntax.parser import _comment_column, _split_lines, parse_source, split_sections
 
     spec, diagnostics = parse_source(source)
     if spec is None or any(d.is_error for d in diagnostics):

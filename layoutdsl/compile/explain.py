@@ -16,9 +16,9 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
-from layoutdsl.ast import Room, Spec
+from layoutdsl.syntax.ast import Room, Spec
 from layoutdsl.diagnostics import Diagnostic, Severity, register
-from layoutdsl.source import Span
+from layoutdsl.diagnostics.source import Span
 
 E901 = register(
     "E901",
@@ -244,14 +244,14 @@ def scip_feasibility(spec: Spec, seconds: float, *, seed: int = 0) -> bool | Non
 
 def feasibility(spec: Spec, seconds: float, *, seed: int = 0) -> bool | None:
     """SCIP for a third of the time (it proves most conflicts infeasible in presolve), then the
-    first-feasible construction (layoutdsl.construct, when present) for the rest, since SCIP
+    first-feasible construction (layoutdsl.compile.construct, when present) for the rest, since SCIP
     alone often finds no layout of ten rooms or more in seconds even when one exists."""
     began = time.monotonic()
     result = scip_feasibility(spec, seconds / 3, seed=seed)
     if result is not None:
         return result
     try:
-        from layoutdsl.construct import construct_start
+        from layoutdsl.compile.construct import construct_start
     except ImportError:
         return None
     left = seconds - (time.monotonic() - began)
@@ -260,8 +260,8 @@ def feasibility(spec: Spec, seconds: float, *, seed: int = 0) -> bool | None:
     rects = construct_start(spec, seed=seed, deadline=time.monotonic() + left)
     if rects is None:
         return None
-    from layoutdsl.compiler import layout_from_rects
-    from layoutdsl.verify import verify
+    from layoutdsl.compile.pipeline import layout_from_rects
+    from layoutdsl.layout.verify import verify
 
     # only a layout the independent verifier accepts proves feasibility
     return True if not verify(spec, layout_from_rects(spec, rects)) else None

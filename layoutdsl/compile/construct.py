@@ -19,7 +19,7 @@ start it polishes well. So we construct the start ourselves:
    small MIP warm-started from the previous solution, stopped at zero stretch.
 4. With zero stretch the relations are final: one more LP brings the sizes to their
    targets, and the rectangles are checked against every hard constraint (our own check,
-   then `layoutdsl.verify`) before they are returned.
+   then `layoutdsl.layout.verify`) before they are returned.
 
 Measured on the 24 real plans (hints from the importer): all 24 construct, median 0.1 s,
 at most ~15 s (school_wilbraham); see bench/bench.py.
@@ -34,7 +34,7 @@ import sys
 import time
 from dataclasses import dataclass
 
-from layoutdsl.ast import Room, Spec
+from layoutdsl.syntax.ast import Room, Spec
 
 Rect = tuple[float, float, float, float]
 """(x, y, w, h): bottom-left corner and size, metres, boundary frame."""
@@ -552,7 +552,7 @@ def _covers(rect: Rect, px: float, py: float) -> bool:
 def rects_to_layout(spec: Spec, rects: dict[str, Rect]):
     """A Layout (with portals) of the rectangles, for the verifier and the emitters."""
     # the compiler's conversion, so a start is judged exactly as a compiled layout is
-    from layoutdsl.compiler import layout_from_rects
+    from layoutdsl.compile.pipeline import layout_from_rects
 
     return layout_from_rects(spec, rects)
 
@@ -562,7 +562,7 @@ def check_start(spec: Spec, rects: dict[str, Rect]) -> list[str]:
     problems = hard_violations(spec, rects)
     if problems:
         return problems
-    from layoutdsl.verify import verify
+    from layoutdsl.layout.verify import verify
 
     return [violation.message for violation in verify(spec, rects_to_layout(spec, rects))]
 

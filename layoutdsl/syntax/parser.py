@@ -22,10 +22,10 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedTok
 from lark.lexer import Lexer
 from lark.utils import TextSlice
 
-from layoutdsl import build
-from layoutdsl.ast import Spec
+from layoutdsl.syntax import builder as build
+from layoutdsl.syntax.ast import Spec
 from layoutdsl.diagnostics import Diagnostic, Severity, register
-from layoutdsl.source import Source, Span
+from layoutdsl.diagnostics.source import Source, Span
 
 # ===== Sections and line shapes =====
 
@@ -155,12 +155,8 @@ class SectionHeader:
 
 
 def _grammar_path() -> Path:
-    """The grammar: inside the package when installed, top-level `grammar/` in a checkout."""
-    here = Path(__file__).resolve().parent
-    for candidate in (here / "grammar" / "layout.lark", here.parent / "grammar" / "layout.lark"):
-        if candidate.is_file():
-            return candidate
-    raise FileNotFoundError("layoutdsl grammar file layout.lark not found")
+    """The grammar file, which lives beside this module (in a checkout and when installed)."""
+    return Path(__file__).resolve().parent / "layout.lark"
 
 
 class LineLexer(Lexer):

@@ -21,7 +21,7 @@ from dataclasses import replace
 
 import networkx as nx
 
-from layoutdsl.ast import Cluster, ClusterMember, Spec
+from layoutdsl.syntax.ast import Cluster, ClusterMember, Spec
 
 DEFAULT_SUB_SHARE = 0.4
 """Share of the remaining time a cycle's sub-problem may use."""
@@ -118,7 +118,7 @@ def compile_with_cycles(
     if that finds nothing, as the thesis used it; `strategy="cycles"` decomposes at once.
     The whole run keeps to options.time_limit.
     """
-    from layoutdsl.compiler import compile_spec
+    from layoutdsl.compile.pipeline import compile_spec
 
     began = time.monotonic()
     deadline = began + options.time_limit

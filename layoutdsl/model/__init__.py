@@ -43,7 +43,7 @@ from dataclasses import dataclass
 
 import pyomo.environ as pyo
 
-from layoutdsl.ast import Room, Spec
+from layoutdsl.syntax.ast import Room, Spec
 
 SIDES = ("left", "right", "below", "above")
 """Where the first room of a pair lies relative to the second (the four ω of (5.8))."""

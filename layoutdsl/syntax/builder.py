@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from lark import Token, Transformer
 
-from layoutdsl.ast import (
+from layoutdsl.syntax.ast import (
     ADJACENCY_TYPES,
     ROOM_TYPES,
     Adjacency,
@@ -32,10 +32,10 @@ from layoutdsl.ast import (
     Spec,
 )
 from layoutdsl.diagnostics import Diagnostic, Severity, register
-from layoutdsl.source import Span
+from layoutdsl.diagnostics.source import Span
 
 if TYPE_CHECKING:
-    from layoutdsl.parser import Entry, SectionHeader
+    from layoutdsl.syntax.parser import Entry, SectionHeader
 
 E_NUMBER_RANGE = "E008"  # registered in parser.py, where numbers are first met
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from enum import Enum
 
-from layoutdsl.source import Span
+from layoutdsl.diagnostics.source import Span
 
 
 class Severity(str, Enum):
@@ -71,7 +71,7 @@ def has_errors(diagnostics: list[Diagnostic] | tuple[Diagnostic, ...]) -> bool:
     return any(d.is_error for d in diagnostics)
 
 
-CODE_MODULES = ("layoutdsl.parser", "layoutdsl.build", "layoutdsl.check", "layoutdsl.importer", "layoutdsl.explain")
+CODE_MODULES = ("layoutdsl.syntax.parser", "layoutdsl.syntax.builder", "layoutdsl.check", "layoutdsl.importer", "layoutdsl.compile.explain")
 """Modules that register codes at import time; `load_all_codes` imports them all."""
 
 

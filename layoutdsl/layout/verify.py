@@ -25,9 +25,9 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-from layoutdsl.ast import Spec
+from layoutdsl.syntax.ast import Spec
 from layoutdsl.layout import Layout, PlacedRoom, shared_wall
-from layoutdsl.source import Span
+from layoutdsl.diagnostics.source import Span
 
 TOLERANCE = 1e-6
 """Metres. Solutions must meet every rule to within this absolute tolerance."""

@@ -14,10 +14,10 @@ import difflib
 import math
 from collections.abc import Iterable, Iterator
 
-from layoutdsl.ast import Adjacency, Room, Spec
+from layoutdsl.syntax.ast import Adjacency, Room, Spec
 from layoutdsl.diagnostics import Diagnostic, Severity, register
-from layoutdsl.format import format_number as _n
-from layoutdsl.source import Span
+from layoutdsl.syntax.format import format_number as _n
+from layoutdsl.diagnostics.source import Span
 
 # ===== Codes: E1xx names and references =====
 

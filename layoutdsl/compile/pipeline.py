@@ -15,8 +15,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
 
-from layoutdsl import cycles, explain
-from layoutdsl.ast import Spec
+from layoutdsl.compile import cycles, explain
+from layoutdsl.syntax.ast import Spec
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
 from layoutdsl.model import (
@@ -37,7 +37,7 @@ from layoutdsl.solve import (
     solve,
     stderr_progress,
 )
-from layoutdsl.verify import verify
+from layoutdsl.layout.verify import verify
 
 StartProvider = Callable[[Spec, SolveOptions], "dict[str, Rect] | None"]
 """start_provider(spec, options) -> rectangles satisfying every hard constraint, or None.
@@ -81,9 +81,9 @@ class CompileResult:
 
 
 def default_start_provider(spec: Spec, options: SolveOptions) -> dict[str, Rect] | None:
-    """The first-feasible construction of issue 6 (layoutdsl.construct), when it is installed."""
+    """The first-feasible construction of issue 6 (layoutdsl.compile.construct), when it is installed."""
     try:
-        from layoutdsl.construct import construct_start
+        from layoutdsl.compile.construct import construct_start
     except ImportError:
         return None
     return construct_start(spec, seed=options.seed, deadline=time.monotonic() + options.time_limit)
@@ -132,7 +132,7 @@ def compile_spec(
     a start, SCIP alone. The start itself is the answer if SCIP finds nothing better in time.
     When the construction finds no start and the room graph has cycles, 'auto' spends the
     time left on cycle decomposition (unless options.cycles_fallback is off).
-    strategy 'cycles': `layoutdsl.cycles.compile_with_cycles(spec, options, progress=...)`,
+    strategy 'cycles': `layoutdsl.compile.cycles.compile_with_cycles(spec, options, progress=...)`,
     decomposition from the start (§5.5.3).
     """
     began = time.monotonic()

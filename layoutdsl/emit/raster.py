@@ -23,7 +23,7 @@ from dataclasses import dataclass
 import numpy as np
 from PIL import Image, ImageDraw
 
-from layoutdsl.building import Building, Space
+from layoutdsl.importer.building import Building, Space
 from layoutdsl.layout import Layout, Portal
 
 DEFAULT_RESOLUTION = 0.05

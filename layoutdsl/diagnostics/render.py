@@ -11,7 +11,7 @@ import json
 from collections.abc import Iterable, Mapping
 
 from layoutdsl.diagnostics import Diagnostic
-from layoutdsl.source import Source
+from layoutdsl.diagnostics.source import Source
 
 
 def _sorted(diagnostics: Iterable[Diagnostic]) -> list[Diagnostic]:
