@@ -10,9 +10,12 @@ from __future__ import annotations
 import difflib
 import math
 import re
-from dataclasses import dataclass
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+from dataclasses import dataclass, field
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from lark import Token, Transformer
 
@@ -33,9 +36,6 @@ from layoutdsl.syntax.ast import (
 )
 from layoutdsl.diagnostics import Diagnostic, Severity, register
 from layoutdsl.diagnostics.source import Span
-
-if TYPE_CHECKING:
-    from layoutdsl.syntax.parser import Entry, SectionHeader
 
 E_NUMBER_RANGE = "E008"  # registered in parser.py, where numbers are first met
 
@@ -109,6 +109,51 @@ EMPHASIS_VALUES = ("default", "heuristics", "feasibility", "optimality", "easyci
 
 
 @dataclass(frozen=True, slots=True)
+class Entry:
+    """One parsed entry line: its section, 1-based line number, text and built node."""
+
+    section: str
+    line: int
+    text: str
+    node: object
+    """What LineBuilder made of the line (an AST node, or a marker tuple)."""
+
+
+@dataclass(frozen=True, slots=True)
+class SectionHeader:
+    """Where a section was opened."""
+
+    name: str
+    line: int
+    text: str
+
+
+@dataclass(slots=True)
+class LineContext:
+    """Where the line being built is, and where its value problems go (one per parse call)."""
+
+    filename: str
+    line: int
+    diagnostics: list[Diagnostic] = field(default_factory=list)
+
+
+# Lark calls the builder inline while it parses (see parser.get_parser), so the builder cannot
+# be told which line it is building through the call; the parse call sets this instead. A
+# context variable is private to each thread (and asyncio task), so parsing is thread-safe.
+_CURRENT_LINE: ContextVar[LineContext] = ContextVar("layoutdsl_current_line")
+
+
+@contextmanager
+def building_line(filename: str, line: int, diagnostics: list[Diagnostic]) -> Iterator[None]:
+    """While inside, LINE_BUILDER builds line `line` of `filename` into `diagnostics`."""
+    token = _CURRENT_LINE.set(LineContext(filename, line, diagnostics))
+    try:
+        yield
+    finally:
+        _CURRENT_LINE.reset(token)
+
+
+@dataclass(frozen=True, slots=True)
 class _Num:
     value: float
     span: Span
@@ -125,29 +170,28 @@ class LineBuilder(Transformer):
     """Lark Transformer from one entry line to its AST node (or a marker tuple).
 
     Lark runs it inline while parsing (see parser.get_parser), so it cannot take the line
-    number from the tree: the parser sets `line` and `filename` before each line, and
-    value errors are appended to `diagnostics`. One instance serves the process
-    (LINE_BUILDER); parsing is therefore not thread-safe.
+    number from the tree: it reads the line, file name and diagnostics list of the current
+    parse call from `building_line`. The instance itself holds no state, so the one
+    LINE_BUILDER serves every thread.
     """
 
-    def __init__(self, filename: str = "<spec>") -> None:
+    def __init__(self) -> None:
         super().__init__(visit_tokens=False)
-        self.filename = filename
-        self.line = 1
-        self.diagnostics: list[Diagnostic] = []
 
     # -- helpers
     def _span(self, token: Token) -> Span:
-        return Span(self.line, token.column, self.line, token.end_column)
+        line = _CURRENT_LINE.get().line
+        return Span(line, token.column, line, token.end_column)
 
     def _word(self, token: Token) -> _Word:
         return _Word(str(token), self._span(token))
 
     def _error(self, code: str, message: str, span: Span, label: str = "", help: str | None = None):
-        self.diagnostics.append(Diagnostic(code, message, self.filename, span, label=label, help=help))
+        context = _CURRENT_LINE.get()
+        context.diagnostics.append(Diagnostic(code, message, context.filename, span, label=label, help=help))
 
     def _line_span(self, first: Span, last: Span) -> Span:
-        return Span(self.line, first.col, self.line, last.end_col)
+        return Span(first.line, first.col, first.line, last.end_col)
 
     # -- rules
     def number(self, children: list[Token]) -> _Num:

@@ -23,6 +23,7 @@ from lark.lexer import Lexer
 from lark.utils import TextSlice
 
 from layoutdsl.syntax import builder as build
+from layoutdsl.syntax.builder import Entry, SectionHeader
 from layoutdsl.syntax.ast import Spec
 from layoutdsl.diagnostics import Diagnostic, Severity, register
 from layoutdsl.diagnostics.source import Source, Span
@@ -131,25 +132,6 @@ E_NUMBER_RANGE = register(
 )  # fmt: skip
 
 
-@dataclass(frozen=True, slots=True)
-class Entry:
-    """One parsed entry line: its section, 1-based line number, text and built node."""
-
-    section: str
-    line: int
-    text: str
-    node: object
-    """What build.LineBuilder made of the line (an AST node, or a marker tuple)."""
-
-
-@dataclass(frozen=True, slots=True)
-class SectionHeader:
-    """Where a section was opened."""
-
-    name: str
-    line: int
-    text: str
-
 
 # ===== The parser =====
 
@@ -209,22 +191,20 @@ def get_parser() -> Lark:
     )
 
 
-def parse_line(rule: str, text: str, line: int = 1, filename: str = "<line>") -> object:
+def parse_line(
+    rule: str, text: str, line: int = 1, filename: str = "<line>", diagnostics: list[Diagnostic] | None = None
+) -> object:
     """Parse and build one entry line with a start rule; raises lark's UnexpectedInput.
 
-    Value problems found while building (an unknown room type, say) go to
-    `build.LINE_BUILDER.diagnostics`; a line that fails to parse leaves none behind.
+    Value problems found while building (an unknown room type, say) are appended to
+    `diagnostics` when it is given; a line that fails to parse leaves none behind.
     """
-    builder = build.LINE_BUILDER
-    saved = (builder.filename, builder.line, len(builder.diagnostics))
-    builder.filename, builder.line = filename, line
-    try:
-        return get_parser().parse(text, start=rule)
-    except UnexpectedInput:
-        del builder.diagnostics[saved[2] :]
-        raise
-    finally:
-        builder.filename, builder.line = saved[0], saved[1]
+    found: list[Diagnostic] = []
+    with build.building_line(filename, line, found):
+        node = get_parser().parse(text, start=rule)
+    if diagnostics is not None:
+        diagnostics.extend(found)
+    return node
 
 
 # ===== Named syntax errors =====
@@ -441,9 +421,13 @@ def _suggest(word: str, candidates) -> str | None:
 
 
 def split_sections(
-    source: Source,
+    source: Source, value_diagnostics: list[Diagnostic] | None = None
 ) -> tuple[list[SectionHeader], list[Entry], list[Diagnostic]]:
-    """Section headers, parsed entries (in file order) and line-level syntax errors."""
+    """Section headers, parsed entries (in file order) and line-level syntax errors.
+
+    Value problems of lines that do parse (an unknown room type, say) go to
+    `value_diagnostics` when it is given.
+    """
     filename = source.path
     headers: list[SectionHeader] = []
     entries: list[Entry] = []
@@ -501,7 +485,7 @@ def split_sections(
                 continue
         rule = SECTION_RULES[section]
         try:
-            node = parse_line(rule, raw, line_no, filename)
+            node = parse_line(rule, raw, line_no, filename, value_diagnostics)
         except UnexpectedInput as error:
             if isinstance(error, UnexpectedCharacters):  # unreachable: NAME matches anything
                 span = Span(line_no, error.column, line_no, error.column + 1)
@@ -529,14 +513,9 @@ def parse_source(source: Source) -> tuple[Spec | None, list[Diagnostic]]:
     Name resolution and geometry are check.py's job; this stage reports everything about
     the text itself (shape of each line, number syntax, section structure, value types).
     """
-    builder = build.LINE_BUILDER
-    saved = builder.diagnostics
-    builder.diagnostics = []
-    try:
-        headers, entries, diagnostics = split_sections(source)
-        diagnostics.extend(builder.diagnostics)
-    finally:
-        builder.diagnostics = saved
+    value_diagnostics: list[Diagnostic] = []
+    headers, entries, diagnostics = split_sections(source, value_diagnostics)
+    diagnostics.extend(value_diagnostics)
     spec, build_diagnostics = build.build_spec(
         entries, headers, path=source.path, default_name=spec_name_for(source.path),
         had_syntax_errors=any(d.is_error for d in diagnostics),

@@ -140,3 +140,29 @@ def test_grammar_is_found_inside_an_installed_package(tmp_path) -> None:
     )  # fmt: skip
     assert result.returncode == 0, result.stderr
     assert result.stdout.strip() == str(package / "syntax" / "layout.lark")
+
+
+def test_parsing_in_threads_keeps_each_files_lines_and_diagnostics_apart() -> None:
+    """The builder's per-line state belongs to each parse call, not to the process."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    def parse(index: int) -> list[tuple[str, str, int]]:
+        # Each file has its bad room type on a different line, so a shared builder state
+        # would put a diagnostic in the wrong file or on the wrong line.
+        padding = "".join(f"R{i} 4 6 5 3 5 4 1 2 R A\n" for i in range(index))
+        text = f"rooms\n{padding}BAD 4 6 5 3 5 4 1 2 X A\n\nboundary\n40 40\n"
+        diagnostics = []
+        for _ in range(20):
+            _, diagnostics = parse_source(Source(f"f{index}.lay", text))
+        return [(d.code, d.filename, d.span.line) for d in diagnostics]
+
+    with ThreadPoolExecutor(max_workers=8) as pool:
+        results = list(pool.map(parse, range(16)))
+    assert results == [[("E012", f"f{i}.lay", i + 2)] for i in range(16)]
+
+
+def test_a_line_parsed_alone_reports_its_value_problems_to_the_caller() -> None:
+    found = []
+    node = parser.parse_line("room_line", "R0 4 6 5 3 5 4 1 2 X A", line=7, filename="a.lay", diagnostics=found)
+    assert node.id == "R0"
+    assert [(d.code, d.filename, d.span.line) for d in found] == [("E012", "a.lay", 7)]
