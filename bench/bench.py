@@ -63,7 +63,7 @@ def size_deviation(spec, layout) -> float:
 
 def _solve(path: str, strategy: str, time_limit: float, seed: int) -> dict:
     """Import and compile one plan with one strategy: plain numbers for the table."""
-    from layoutdsl.compile.pipeline import compile_spec
+    from layoutdsl.compile import compile_spec
     from layoutdsl.solve import SolveOptions
 
     spec, original = _load(Path(path))

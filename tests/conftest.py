@@ -47,7 +47,7 @@ harmless."""
 def compiled_spec_layouts() -> dict[str, tuple]:
     """Every spec in specs/ compiled once per test run: stem -> (spec, verified Layout)."""
     from layoutdsl.api import load_spec
-    from layoutdsl.compile.pipeline import compile_spec
+    from layoutdsl.compile import compile_spec
     from layoutdsl.solve import SolveOptions
 
     compiled = {}

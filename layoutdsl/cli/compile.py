@@ -131,7 +131,7 @@ def run(args: argparse.Namespace) -> int:
     if args.variants:
         return _run_variants(spec, args, options, outdir, formats)
 
-    from layoutdsl.compile.pipeline import compile_spec
+    from layoutdsl.compile import compile_spec
 
     if not args.quiet:
         print(f"compiling `{spec.name}`: {len(spec.rooms)} rooms, time limit {options.time_limit:g} s",
@@ -152,10 +152,8 @@ def run(args: argparse.Namespace) -> int:
 
 def _formats(text: str) -> tuple[str, ...] | str:
     """The chosen formats, or an error message."""
-    try:
-        from layoutdsl.emit import parse_formats
-    except ImportError:
-        return ()
+    from layoutdsl.emit import parse_formats
+
     try:
         return parse_formats(text)
     except ValueError as error:
@@ -165,13 +163,8 @@ def _formats(text: str) -> tuple[str, ...] | str:
 def write_layout_files(layout, outdir: Path, stem: str, formats, *, robot_room: str | None = None) -> list[Path]:
     """NAME.layout.json plus the emitters' files for `formats`, all or nothing."""
     files: dict[str, bytes] = {f"{stem}.layout.json": layout.to_json().encode("utf-8")}
-    try:
-        from layoutdsl.emit import render_outputs, write_rendered
-    except ImportError:
-        from layoutdsl.emit.atomic import write_files_atomic
+    from layoutdsl.emit import render_outputs, write_rendered
 
-        outdir.mkdir(parents=True, exist_ok=True)
-        return write_files_atomic({outdir / name: data for name, data in files.items()})
     if formats:
         files.update(render_outputs(layout, stem, formats, robot_room=robot_room))
     return write_rendered(files, outdir)
@@ -229,10 +222,8 @@ def summary(spec, layout, written: list[Path]) -> str:
 
 def _run_variants(spec, args, options, outdir: Path, formats) -> int:
     """--variants N: the construction helper's compile_variants writes NAME-1.* ... NAME-N.*."""
-    try:
-        from layoutdsl.compile.variants import compile_variants
-    except ImportError:
-        return _error("--variants is not available in this build (layoutdsl.compile.variants is missing)")
+    from layoutdsl.compile.variants import compile_variants
+
     try:
         result = compile_variants(spec, args.variants, seed=options.seed, options=options,
                                   outdir=outdir, formats=formats, robot_room=args.robot_room)

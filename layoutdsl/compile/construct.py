@@ -34,10 +34,9 @@ import sys
 import time
 from dataclasses import dataclass
 
+from layoutdsl.layout.geometry import Rect, layout_from_rects
 from layoutdsl.syntax.ast import Room, Spec
 
-Rect = tuple[float, float, float, float]
-"""(x, y, w, h): bottom-left corner and size, metres, boundary frame."""
 
 def _debug(message: str) -> None:
     if os.environ.get("LAYOUTDSL_DEBUG_CONSTRUCT"):
@@ -552,8 +551,6 @@ def _covers(rect: Rect, px: float, py: float) -> bool:
 def rects_to_layout(spec: Spec, rects: dict[str, Rect]):
     """A Layout (with portals) of the rectangles, for the verifier and the emitters."""
     # the compiler's conversion, so a start is judged exactly as a compiled layout is
-    from layoutdsl.compile.pipeline import layout_from_rects
-
     return layout_from_rects(spec, rects)
 
 

@@ -21,6 +21,7 @@ from dataclasses import replace
 
 import networkx as nx
 
+from layoutdsl.compile.pipeline import compile_from_start
 from layoutdsl.syntax.ast import Cluster, ClusterMember, Spec
 
 DEFAULT_SUB_SHARE = 0.4
@@ -112,14 +113,12 @@ def compile_with_cycles(
     sub_share: float = DEFAULT_SUB_SHARE,
     try_plain_first: bool = False,
 ):
-    """Compile with cycle decomposition (§5.5.3); a compiler.CompileResult.
+    """Compile with cycle decomposition (§5.5.3); a pipeline.CompileResult.
 
     With `try_plain_first`, the spec is first compiled as it is ('auto') and decomposed only
     if that finds nothing, as the thesis used it; `strategy="cycles"` decomposes at once.
     The whole run keeps to options.time_limit.
     """
-    from layoutdsl.compile.pipeline import compile_spec
-
     began = time.monotonic()
     deadline = began + options.time_limit
     # the decomposition's own solves must not fall back to decomposition again
@@ -130,7 +129,7 @@ def compile_with_cycles(
 
     result = None
     if try_plain_first:
-        result = compile_spec(spec, replace(auto, time_limit=remaining() * 0.5),
+        result = compile_from_start(spec, replace(auto, time_limit=remaining() * 0.5),
                               progress=progress, explain_infeasible=False)
         if result.layout is not None:
             return result
@@ -141,7 +140,7 @@ def compile_with_cycles(
         if cycle is None:
             break
         sub = subproblem(current, cycle)
-        sub_result = compile_spec(sub, replace(auto, time_limit=remaining() * sub_share),
+        sub_result = compile_from_start(sub, replace(auto, time_limit=remaining() * sub_share),
                                   progress=progress, explain_infeasible=False)
         clustered.update(cycle)
         if sub_result.layout is None:
@@ -149,12 +148,12 @@ def compile_with_cycles(
         centres = {room.id: room.centre for room in sub_result.layout.rooms}
         cluster = cycle_cluster(_fresh_cluster_id(current), cycle, centres)
         current = replace(current, clusters=current.clusters + (cluster,))
-        result = compile_spec(current, replace(auto, time_limit=remaining()),
+        result = compile_from_start(current, replace(auto, time_limit=remaining()),
                               progress=progress, explain_infeasible=False)
         if result.layout is not None:
             return _as_cycles(result)
     if result is None:
-        result = compile_spec(current, replace(auto, time_limit=remaining()), progress=progress)
+        result = compile_from_start(current, replace(auto, time_limit=remaining()), progress=progress)
     return _as_cycles(result)
 
 

@@ -244,23 +244,21 @@ def scip_feasibility(spec: Spec, seconds: float, *, seed: int = 0) -> bool | Non
 
 def feasibility(spec: Spec, seconds: float, *, seed: int = 0) -> bool | None:
     """SCIP for a third of the time (it proves most conflicts infeasible in presolve), then the
-    first-feasible construction (layoutdsl.compile.construct, when present) for the rest, since SCIP
+    first-feasible construction (layoutdsl.compile.construct) for the rest, since SCIP
     alone often finds no layout of ten rooms or more in seconds even when one exists."""
     began = time.monotonic()
     result = scip_feasibility(spec, seconds / 3, seed=seed)
     if result is not None:
         return result
-    try:
-        from layoutdsl.compile.construct import construct_start
-    except ImportError:
-        return None
+    from layoutdsl.compile.construct import construct_start
+
     left = seconds - (time.monotonic() - began)
     if left <= 0.1:
         return None
     rects = construct_start(spec, seed=seed, deadline=time.monotonic() + left)
     if rects is None:
         return None
-    from layoutdsl.compile.pipeline import layout_from_rects
+    from layoutdsl.layout.geometry import layout_from_rects
     from layoutdsl.layout.verify import verify
 
     # only a layout the independent verifier accepts proves feasibility

@@ -15,13 +15,14 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
 
-from layoutdsl.compile import cycles, explain
+from layoutdsl.compile import explain
+from layoutdsl.compile.construct import construct_start
 from layoutdsl.syntax.ast import Spec
 from layoutdsl.diagnostics import Diagnostic
-from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
+from layoutdsl.layout import Layout, SolveInfo, round_layout_number
+from layoutdsl.layout.geometry import layout_from_rects
 from layoutdsl.model import (
     THESIS_AS_WRITTEN,
-    Rect,
     build_model,
     objective_of_rects,
     rects_from_model,
@@ -37,11 +38,15 @@ from layoutdsl.solve import (
     solve,
     stderr_progress,
 )
+from layoutdsl.layout.geometry import Rect
 from layoutdsl.layout.verify import verify
 
 StartProvider = Callable[[Spec, SolveOptions], "dict[str, Rect] | None"]
 """start_provider(spec, options) -> rectangles satisfying every hard constraint, or None.
 It must return within options.time_limit seconds (its share of the compile's limit)."""
+
+Fallback = Callable[[Spec, SolveOptions, "ProgressCallback | None"], "CompileResult"]
+"""fallback(spec, options, progress) -> the result of another strategy, in options.time_limit."""
 
 START_SHARE = 0.5
 """Share of the time limit a start provider may use; SCIP gets the rest and any time left."""
@@ -67,7 +72,7 @@ LNS_SIZE = 4
 
 @dataclass(slots=True)
 class CompileResult:
-    """What compile_spec produced: a verified layout, or diagnostics saying why not."""
+    """What a compile produced: a verified layout, or diagnostics saying why not."""
 
     layout: Layout | None
     diagnostics: list[Diagnostic]
@@ -81,41 +86,11 @@ class CompileResult:
 
 
 def default_start_provider(spec: Spec, options: SolveOptions) -> dict[str, Rect] | None:
-    """The first-feasible construction of issue 6 (layoutdsl.compile.construct), when it is installed."""
-    try:
-        from layoutdsl.compile.construct import construct_start
-    except ImportError:
-        return None
+    """The first-feasible construction of issue 6 (layoutdsl.compile.construct)."""
     return construct_start(spec, seed=options.seed, deadline=time.monotonic() + options.time_limit)
 
 
-def layout_from_rects(spec: Spec, rects: Mapping[str, Rect], info: SolveInfo | None = None) -> Layout:
-    """A Layout from plain rectangles: rounded rooms, portals centred on their shared walls."""
-    assert spec.boundary is not None
-    placed = {}
-    for room in spec.rooms:
-        x, y, w, h = (round_layout_number(float(v)) for v in rects[room.id])
-        placed[room.id] = PlacedRoom(room.id, room.label, room.rtype, x, y, w, h)
-    portals = []
-    for adj in spec.adjacencies:
-        try:
-            portals.append(make_portal(placed[adj.a], placed[adj.b], adj.kind, adj.door))
-        except ValueError:
-            continue  # no shared wall: the verifier reports the adjacency
-    obstacles = tuple(PlacedObstacle(o.id, o.x, o.y, o.w, o.h) for o in spec.boundary.obstacles)
-    return Layout(
-        name=spec.name,
-        width=spec.boundary.w,
-        height=spec.boundary.h,
-        walldim=spec.settings.walldim,
-        rooms=tuple(placed[r.id] for r in spec.rooms),
-        portals=tuple(portals),
-        obstacles=obstacles,
-        solve=info,
-    )
-
-
-def compile_spec(
+def compile_from_start(
     spec: Spec,
     options: SolveOptions,
     *,
@@ -123,17 +98,16 @@ def compile_spec(
     start_provider: StartProvider | None = None,
     progress: ProgressCallback | None = None,
     explain_infeasible: bool = True,
+    no_start_fallback: Fallback | None = None,
 ) -> CompileResult:
-    """Compile a checked spec to a verified Layout under `options` (strategy, limits, seed).
+    """The strategies 'auto' and 'thesis': a verified Layout from a start polished by SCIP.
 
     strategy 'thesis': the thesis' formulation as written, solved by SCIP from scratch.
     strategy 'auto': a first feasible layout from `start`, else from `start_provider` (by
     default the construction of issue 6), handed to SCIP as its start for polishing; without
     a start, SCIP alone. The start itself is the answer if SCIP finds nothing better in time.
-    When the construction finds no start and the room graph has cycles, 'auto' spends the
-    time left on cycle decomposition (unless options.cycles_fallback is off).
-    strategy 'cycles': `layoutdsl.compile.cycles.compile_with_cycles(spec, options, progress=...)`,
-    decomposition from the start (§5.5.3).
+    When no start is found, `no_start_fallback(spec, options_with_the_time_left, progress)`
+    gets the time left instead (the dispatcher passes cycle decomposition there).
     """
     began = time.monotonic()
     deadline = began + options.time_limit
@@ -152,8 +126,6 @@ def compile_spec(
     if options.strategy == "thesis":
         formulation = THESIS_AS_WRITTEN
         rects_start = None
-    elif options.strategy == "cycles":
-        return cycles.compile_with_cycles(spec, options, progress=progress)
     t0 = time.monotonic()
     model = build_model(spec, formulation=formulation)
     timings["build"] = time.monotonic() - t0
@@ -173,12 +145,9 @@ def compile_spec(
         t0 = time.monotonic()
         rects_start = provider(spec, share)
         timings["start"] = time.monotonic() - t0
-        if rects_start is None and options.cycles_fallback and _has_cycles(spec):
-            # The thesis' remedy when generation finds nothing (§5.5.3). SCIP from scratch,
-            # the alternative, finds no layout from about 20 rooms up (solver scouting), so
-            # the time left is better spent decomposing.
+        if rects_start is None and no_start_fallback is not None:
             left = replace(options, time_limit=max(0.1, deadline - time.monotonic()))
-            return cycles.compile_with_cycles(spec, left, progress=progress)
+            return no_start_fallback(spec, left, progress)
     if rects_start is not None:
         # a start that fails verification is never handed on as an answer
         start_layout = layout_from_rects(spec, rects_start)
@@ -297,8 +266,3 @@ def _no_layout(spec: Spec, options: SolveOptions, outcome: SolveOutcome, failure
         diagnostics = [explain.no_layout_in_time(spec, options, outcome.status)]
     timings["total"] = time.monotonic() - began
     return CompileResult(None, diagnostics, status, timings, outcome)
-
-
-def _has_cycles(spec: Spec) -> bool:
-    """Whether the room graph has a cycle (edges > rooms - components)."""
-    return cycles.cycle_rank(spec) > 0

@@ -112,7 +112,7 @@ def _solve_variant(job: tuple[int, int, object, tuple[str, float, float] | None]
 
 
 def _compile_variant(spec: Spec, index: int, seed: int, options, point):
-    from layoutdsl.compile.pipeline import compile_spec
+    from layoutdsl.compile import compile_spec
     from layoutdsl.compile.construct import construct_start
 
     variant_seed = seed + index - 1

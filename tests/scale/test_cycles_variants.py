@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 import time
 
-from layoutdsl.compile.pipeline import compile_spec
+from layoutdsl.compile import compile_spec
 from layoutdsl.compile.construct import construct_start, rects_to_layout
 from layoutdsl.compile.cycles import (
     compile_with_cycles,

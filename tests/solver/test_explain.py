@@ -5,7 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from layoutdsl.api import read_source, lint_source
-from layoutdsl.compile.pipeline import compile_spec
+from layoutdsl.compile import compile_spec
 from layoutdsl.compile.explain import E901, conflicting_groups, constraint_groups, scip_feasibility, spec_without
 from layoutdsl.solve import SolveOptions
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from layoutdsl.compile.pipeline import layout_from_rects
+from layoutdsl.layout.geometry import layout_from_rects
 from layoutdsl.model import build_model, rects_from_model
 from layoutdsl.solve import SolveOptions, solve
 from layoutdsl.layout.verify import verify

@@ -12,7 +12,8 @@ import pytest
 
 from layoutdsl.diagnostics import exitcodes
 from layoutdsl.syntax.ast import Adjacency
-from layoutdsl.compile.pipeline import compile_spec, layout_from_rects
+from layoutdsl.compile import compile_spec
+from layoutdsl.layout.geometry import layout_from_rects
 from layoutdsl.model import (
     THESIS_AS_WRITTEN,
     Formulation,
