@@ -26,8 +26,9 @@ from pyomo.common.timing import HierarchicalTimer
 from pyomo.contrib.solver.solvers.scip.scip_direct import ScipDirect
 from pyscipopt import SCIP_EVENTTYPE, SCIP_PARAMEMPHASIS, SCIP_PARAMSETTING, Eventhdlr
 
-from layoutdsl.syntax.ast import Settings
+from layoutdsl import private_api
 from layoutdsl.model import Formulation
+from layoutdsl.syntax.ast import Settings
 
 EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
 """Values of the `emphasis` setting / `--emphasis` flag."""
@@ -321,9 +322,9 @@ def _translate(model: pyo.ConcreteModel, *, feasibility_only: bool = False):
         interface = ScipDirect()
         config = interface.config(value={}, preserve_implicit=True)
         config.timer = HierarchicalTimer()
-        # Pyomo's translation (private API of the pinned Pyomo 6.10.x): the public solve() would
-        # run optimize() itself without our event handler, emphasis and full warm start
-        scip_model, loader, _ = interface._create_solver_model(model, config)
+        # Pyomo's translation alone: the public solve() would run optimize() itself, without
+        # our event handler, emphasis and full warm start
+        scip_model, loader = private_api.scip_model_of(interface, model, config)
     finally:
         if feasibility_only:
             objective.activate()
@@ -354,7 +355,7 @@ def _add_start(interface: ScipDirect, scip_model, model: pyo.ConcreteModel, feas
     partial solution: a SCIP model re-solved many times (the neighbourhood search) keeps its
     partial solutions across rounds and refuses more than limits/maxorigsol of them.
     """
-    var_map = interface._pyomo_var_to_solver_var_map
+    var_map = private_api.scip_variables(interface)
     full = _has_full_start(model)
     if not full and not partial_fallback:
         return False
@@ -370,7 +371,7 @@ def _add_start(interface: ScipDirect, scip_model, model: pyo.ConcreteModel, feas
         scip_model.addSol(sol)
         return True
     # Pyomo moves the objective into a variable t >= expr; give it the expression's value
-    obj_var = interface._obj_var
+    obj_var = private_api.scip_objective_variable(interface)
     if obj_var is not None:
         value = 0.0 if feasibility_only else pyo.value(model.eq5_1_objective.expr)
         scip_model.setSolVal(sol, obj_var, value)
@@ -480,7 +481,7 @@ def improve_by_neighbourhoods(
     scip_model.setPresolve(SCIP_PARAMSETTING.FAST)  # measured: sub-problems solve faster
     watch = _Watch(started, deadline + GUARD_GRACE_SECONDS, None)
     scip_model.includeEventhdlr(watch, "layoutdsl_watch", "wall-clock guard")
-    var_map = interface._pyomo_var_to_solver_var_map
+    var_map = private_api.scip_variables(interface)
     binaries = [(var, var_map[var], owners) for var, owners in _binaries_by_rooms(model) if var in var_map]
     continuous = {r: [(v, var_map[v], v.bounds) for v in vs if v in var_map and not v.fixed]
                   for r, vs in _continuous_by_room(model).items()}

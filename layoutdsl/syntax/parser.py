@@ -14,14 +14,13 @@ import difflib
 import functools
 import re
 from collections.abc import Iterator
-from dataclasses import dataclass
 from pathlib import Path
 
 from lark import Lark, Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
 from lark.lexer import Lexer
-from lark.utils import TextSlice
 
+from layoutdsl import private_api
 from layoutdsl.syntax import builder as build
 from layoutdsl.syntax.builder import Entry, SectionHeader
 from layoutdsl.syntax.ast import Spec
@@ -171,8 +170,7 @@ class LineLexer(Lexer):
             raise UnexpectedCharacters(text, position, 1, position + 1)
 
     def lex(self, lexer_state, parser_state) -> Iterator[Token]:
-        text = lexer_state.text
-        return self.tokens(text.text[text.start : text.end] if isinstance(text, TextSlice) else text)
+        return self.tokens(private_api.lexer_text(lexer_state.text))
 
 
 @functools.cache
@@ -288,7 +286,7 @@ def name_syntax_error(rule: str, error: UnexpectedInput) -> str | None:
 
 def _line_tokens(text: str) -> list[Token]:
     try:
-        return list(get_parser().parser.lexer.tokens(text))
+        return list(private_api.parser_lexer(get_parser()).tokens(text))
     except UnexpectedInput:  # unreachable with this grammar: NAME matches any other text
         return []
 
