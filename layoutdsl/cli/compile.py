@@ -11,11 +11,13 @@ import argparse
 import sys
 from pathlib import Path
 
-from layoutdsl.diagnostics import exitcodes
 from layoutdsl.cli.argtypes import non_negative_float, non_negative_int, positive_float, positive_int
+from layoutdsl.diagnostics import exitcodes
+from layoutdsl.syntax.ast import EMPHASES
 
-EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
 STRATEGIES = ("auto", "thesis", "cycles")
+"""The strategies compile_spec dispatches over (layoutdsl.compile); defined here, not in
+the solver, so that `--help` need not import Pyomo."""
 
 
 def add_parser(subparsers) -> None:

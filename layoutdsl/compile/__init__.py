@@ -44,15 +44,16 @@ def compile_spec(
     """
     if options.strategy == "cycles":
         return cycles.compile_with_cycles(spec, options, progress=progress)
-    fallback = None
-    if options.strategy == "auto" and options.cycles_fallback and cycles.cycle_rank(spec) > 0:
-        # The thesis' remedy when generation finds nothing (§5.5.3). SCIP from scratch, the
-        # alternative, finds no layout from about 20 rooms up (solver scouting), so the time
-        # left is better spent decomposing.
-        def fallback(spec_: Spec, left: SolveOptions, progress_: ProgressCallback | None) -> CompileResult:
-            return cycles.compile_with_cycles(spec_, left, progress=progress_)
-
+    # The thesis' remedy when generation finds nothing (§5.5.3). SCIP from scratch, the
+    # alternative, finds no layout from about 20 rooms up (solver scouting), so the time left
+    # is better spent decomposing.
+    decompose = options.strategy == "auto" and options.cycles_fallback and cycles.cycle_rank(spec) > 0
+    fallback = _decompose_cycles if decompose else None
     return compile_from_start(
         spec, options, start=start, start_provider=start_provider, progress=progress,
         explain_infeasible=explain_infeasible, no_start_fallback=fallback,
     )  # fmt: skip
+
+
+def _decompose_cycles(spec: Spec, options: SolveOptions, progress: ProgressCallback | None) -> CompileResult:
+    return cycles.compile_with_cycles(spec, options, progress=progress)

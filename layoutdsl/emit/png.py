@@ -26,13 +26,13 @@ from functools import cache
 from PIL import Image, ImageDraw, ImageFont
 
 from layoutdsl.layout import Layout, PlacedRoom, Portal
+from layoutdsl.syntax.ast import ROOM_TYPE_NAMES, ROOM_TYPES
 
 BACKGROUND = "#ffffff"
 WALL = "#2b2b2b"
 TEXT = "#111111"
 ROOM_TINTS = {"R": "#d6e4f7", "C": "#f8d7d7", "E": "#fcf3c7"}
 """Pale blue rooms, red corridors, yellow entrances (Figure 4.3c)."""
-ROOM_TYPE_NAMES = {"R": "room", "C": "corridor", "E": "entrance"}
 OPENING = "#ffffff"
 IMPLICIT = "#555555"
 OBSTACLE_FILL = "#c8c8c8"
@@ -265,7 +265,7 @@ def _legend(layout: Layout, x0: float, y0: float, font: int, scale: float, max_w
     def place(label: str, make: Callable[[float, float], list[Primitive]]) -> None:
         entries.append((label, make))
 
-    for rtype in ("R", "C", "E"):
+    for rtype in ROOM_TYPES:
         place(ROOM_TYPE_NAMES[rtype], lambda x, y, t=rtype: [Rect(x, y, x + swatch, y + swatch, ROOM_TINTS[t], WALL, 1)])
     place(
         "door (explicit portal)",

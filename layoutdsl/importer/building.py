@@ -11,8 +11,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-ROOM_TYPES = ("R", "C", "E")
-"""The space types the thesis uses; any other `<type>` is read as a generic room R."""
+from layoutdsl.syntax.ast import ROOM_TYPES
 
 
 def polygon_area(points) -> float:

@@ -27,8 +27,8 @@ from layoutdsl.importer.building import BoundingBox, Building, BuildingPortal, L
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.importer import codes
 from layoutdsl.diagnostics.source import Span
+from layoutdsl.syntax.ast import ROOM_TYPES
 
-ROOM_TYPES = ("R", "C", "E")
 PORTAL_TYPES = ("EXPLICIT", "IMPLICIT")
 
 # Door sizes (metres) a real building can have; outside this the unit is almost surely wrong.

@@ -28,13 +28,7 @@ from pyscipopt import SCIP_EVENTTYPE, SCIP_PARAMEMPHASIS, SCIP_PARAMSETTING, Eve
 
 from layoutdsl import private_api
 from layoutdsl.model import Formulation
-from layoutdsl.syntax.ast import Settings
-
-EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
-"""Values of the `emphasis` setting / `--emphasis` flag."""
-
-STRATEGIES = ("auto", "thesis", "cycles")
-"""auto: first-feasible construction then SCIP; thesis: SCIP from scratch; cycles: §5.5.3."""
+from layoutdsl.syntax.ast import EMPHASES, Settings
 
 GUARD_GRACE_SECONDS = 1.0
 """How far past its time limit a solve may run before our guard interrupts it (SCIP's own
@@ -62,7 +56,8 @@ class SolveOptions:
     threads: int = 1
     """SCIP is deterministic single-threaded; more threads only for the LP solver."""
     strategy: str = "auto"
-    """One of STRATEGIES."""
+    """auto: first-feasible construction then SCIP; thesis: SCIP from scratch; cycles: §5.5.3
+    (layoutdsl.compile dispatches on it; the CLI's STRATEGIES lists them)."""
     formulation: Formulation = field(default_factory=Formulation)
     """Which model improvements over the thesis formulation as written to use."""
     cycles_fallback: bool = True

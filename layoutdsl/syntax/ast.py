@@ -16,8 +16,13 @@ from layoutdsl.diagnostics.source import Span
 
 _NO_SPANS: Mapping[str, Span] = MappingProxyType({})
 
-ROOM_TYPES = ("R", "C", "E")
-"""R generic room, C corridor, E entrance (seed §5.2)."""
+ROOM_TYPE_NAMES = {"R": "room", "C": "corridor", "E": "entrance"}
+"""Room type letter -> what it is: R generic room, C corridor, E entrance (the thesis, §5.2)."""
+
+ROOM_TYPES = tuple(ROOM_TYPE_NAMES)
+
+EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
+"""Values of the `emphasis` setting (and `--emphasis`): SCIP's emphasis meta settings."""
 
 ADJACENCY_TYPES = ("e", "i")
 """e explicit portal (a door), i implicit portal (an opening with no barrier)."""
@@ -186,6 +191,14 @@ class Settings:
     explicit: frozenset[str] = field(default=frozenset(), compare=False)
     span: Span | None = field(default=None, compare=False)
     spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+
+SETTING_KEYS = (
+    "name", "lambda_cover", "lambda_error", "walldim", "door_utilization", "cluster_margin",
+    "time_limit", "gap", "seed", "emphasis", "node_limit",
+)  # fmt: skip
+"""Keys of the `settings` section, in the order the formatter writes them: `name` (the
+Spec's name), then the Settings fields."""
 
 
 @dataclass(frozen=True, slots=True)

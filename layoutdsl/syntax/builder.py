@@ -21,7 +21,9 @@ from lark import Token, Transformer
 
 from layoutdsl.syntax.ast import (
     ADJACENCY_TYPES,
+    EMPHASES,
     ROOM_TYPES,
+    SETTING_KEYS,
     Adjacency,
     Boundary,
     Cluster,
@@ -104,8 +106,6 @@ E_MEMBER_BEFORE_CLUSTER = register(
 
 WEIGHT_KEYS = {"cover": "rho_cover", "error": "rho_error"}
 """Per-room weight token key -> Room field."""
-
-EMPHASIS_VALUES = ("default", "heuristics", "feasibility", "optimality", "easycip")
 
 
 @dataclass(frozen=True, slots=True)
@@ -348,13 +348,6 @@ def _parse_float(text: str) -> float | None:
 
 # ===== Settings =====
 
-SETTING_KEYS = (
-    "name", "lambda_cover", "lambda_error", "walldim", "door_utilization", "cluster_margin",
-    "time_limit", "gap", "seed", "emphasis", "node_limit",
-)  # fmt: skip
-"""Keys of the `settings` section, in the order the formatter writes them."""
-
-
 def _setting_value(key: str, text: str) -> tuple[Any, str | None]:
     """(value, None) or (None, what-is-wrong) for one setting's text."""
     if key == "name":
@@ -363,9 +356,9 @@ def _setting_value(key: str, text: str) -> tuple[Any, str | None]:
             return text, None
         return None, "must be a plain file name (letters, digits, `_`, `-`, `.`)"
     if key == "emphasis":
-        if text in EMPHASIS_VALUES:
+        if text in EMPHASES:
             return text, None
-        return None, "must be one of " + ", ".join(f"`{v}`" for v in EMPHASIS_VALUES)
+        return None, "must be one of " + ", ".join(f"`{v}`" for v in EMPHASES)
     if key in ("seed", "node_limit"):
         if key == "node_limit" and text == "none":
             return None, None

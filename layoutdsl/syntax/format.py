@@ -18,14 +18,10 @@ import re
 from collections.abc import Mapping
 from dataclasses import fields
 
-from layoutdsl.syntax.ast import Settings, Spec
+from layoutdsl.syntax.ast import SETTING_KEYS, Settings, Spec
 from layoutdsl.diagnostics.source import Source
 
 _DEFAULT_SETTINGS = Settings()
-SETTINGS_ORDER = (
-    "lambda_cover", "lambda_error", "walldim", "door_utilization", "cluster_margin",
-    "time_limit", "gap", "seed", "emphasis", "node_limit",
-)  # fmt: skip
 _UNKNOWN_PATHS = ("<spec>", "")  # a Spec built in code, not read from a file
 
 
@@ -85,7 +81,7 @@ def _settings_lines(spec: Spec) -> list[tuple[str, int | None]]:
     if "name" in settings.explicit or not name_is_default:
         lines.append((f"name {spec.name}", origin("name")))
     known = {f.name for f in fields(Settings)}
-    for key in SETTINGS_ORDER:
+    for key in SETTING_KEYS:
         if key not in known:
             continue
         value = getattr(settings, key)
