@@ -135,7 +135,7 @@ def school_fig42() -> tuple[Spec, Layout, str]:
         hints=tuple(Hint(p[0], *p[3:7]) for p in FIG42_PLACED),
     )  # fmt: skip
     header = (
-        "# The school of the thesis' Figure 4.2 (seed §4.1), transcribed.\n"
+        "# The school of the thesis' Figure 4.2 (§4.1), transcribed.\n"
         "# Room numbers and boundary are the figure's; the OCR of the figure lost some ids, so the\n"
         "# two washrooms are read as C0 (2.97 ...) and C1 (3.05 ...). The figure shows only a few\n"
         "# adjacencies; the rest are ours: a tree around corridor C3 and hall C2. The hints are a\n"

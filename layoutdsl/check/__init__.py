@@ -3,7 +3,7 @@
 CHECKS is an ordered tuple of `check_*(spec)` functions (sqlglot's optimizer RULES). A
 check reports every problem it finds, never only the first. Later checks skip what an
 earlier one already reported (an unknown room has no size to compare), so one mistake
-gives one message. Geometry follows the thesis model (seed §5.5.1): rooms may be rotated,
+gives one message. Geometry follows the thesis model (§5.5.1): rooms may be rotated,
 corridors have no aspect-ratio limit (5.6), a shared wall must be at least
 door / door_utilization long (5.9).
 """

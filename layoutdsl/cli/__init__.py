@@ -29,7 +29,11 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     """The argument parser; only `command`'s module is imported (all of them when None)."""
     parser = argparse.ArgumentParser(
         prog="layoutdsl",
-        description="Compile building-layout specs into verified floor plans for robot simulation.",
+        description=(
+            "Compile building-layout specs into verified floor plans for robot simulation.\n"
+            "Follows Carideo, Procedural generation of realistic building layouts from graphs\n"
+            "(Politecnico di Milano, 2019); \"the thesis, §5.4\" in messages means its sections."
+        ),
         epilog=exitcodes.EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

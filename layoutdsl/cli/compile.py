@@ -26,7 +26,7 @@ def add_parser(subparsers) -> None:
         "compile",
         help="solve a spec into a verified layout and write its files",
         description=(
-            "Compile a layout spec: lint it, solve the thesis' MIQP (seed §5.5.1) with SCIP, "
+            "Compile a layout spec: lint it, solve the thesis' MIQP (§5.5.1) with SCIP, "
             "verify the result independently and write OUTDIR/NAME.layout.json plus the "
             "chosen output formats. Flags override the spec's settings. The same spec and "
             "seed give the same layout whenever the solve stops at its gap, node limit or "

@@ -25,7 +25,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         help="compare generated plans with their original (topology, areas, paths, exploration)",
         description=(
             "Measure how much generated building plans behave like the real one they come "
-            "from (seed §6.4-6.5): room graph, areas and room sizes, path lengths between "
+            "from (the thesis, §6.4-6.5): room graph, areas and room sizes, path lengths between "
             "entrances, and the effort of a simulated frontier exploration. Writes "
             "report.json, report.md and PNG plots into REPORT_DIR."
         ),

@@ -1,6 +1,6 @@
 """`layoutdsl import plan.xml -o plan.lay`: a real floor plan (building XML) -> a spec.
 
-The spec is written in the thesis' intermediate-model format (seed §5.4), plus a `hints`
+The spec is written in the thesis' intermediate-model format (§5.4), plus a `hints`
 section (each room's place in the original plan) unless `--no-hints`. Diagnostics go to
 stderr; the output file is written atomically and only when the import succeeded.
 """
@@ -25,10 +25,10 @@ def add_parser(subparsers) -> None:
     """Register the `import` subcommand."""
     parser = subparsers.add_parser(
         "import",
-        help="convert a building XML floor plan into a spec (seed §5.3)",
+        help="convert a building XML floor plan into a spec (the thesis, §5.3)",
         description=(
             "Convert a real floor plan in the building XML format into a layout spec:\n"
-            "one rectangular room per space (sizes from its polygon, seed §5.3), one\n"
+            "one rectangular room per space (sizes from its polygon, the thesis, §5.3), one\n"
             "adjacency per pair of spaces joined by a portal, the plan's bounding box as\n"
             "boundary, and each room's original place as a hint for the first layout."
         ),

@@ -1,6 +1,6 @@
 """First feasible layout, built fast and without relying on SCIP's luck (issue 6).
 
-The thesis' model (seed §5.5.1) is hard for SCIP because of its four non-overlap binaries
+The thesis' model (§5.5.1) is hard for SCIP because of its four non-overlap binaries
 per room pair: from ~25 rooms up SCIP finds no feasible layout at all, while from a feasible
 start it polishes well. So we construct the start ourselves:
 

@@ -1,4 +1,4 @@
-"""Cycle decomposition (seed §5.5.3): solve a cycle of rooms alone, keep it as a cluster.
+"""Cycle decomposition (the thesis, §5.5.3): solve a cycle of rooms alone, keep it as a cluster.
 
 Rooms on a cycle of the room graph constrain each other's positions *and* sizes, which is
 what makes a spec hard. The thesis' remedy, reproduced here:

@@ -1,4 +1,4 @@
-"""Many different verified layouts from one spec (seed §6.2).
+"""Many different verified layouts from one spec (the thesis, §6.2).
 
 Variant k (1..N) differs from the others in two ways:
 - as in the thesis, a chosen room (an entrance if there is one) gets a `Position` at a

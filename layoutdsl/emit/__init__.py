@@ -4,8 +4,8 @@ Each emitter reads only a `Layout` (never Pyomo objects) and writes its files at
 
 | format  | files                                   | module               |
 |---------|-----------------------------------------|----------------------|
-| `xml`   | `STEM.xml` (building XML, seed §5.2)    | `layoutdsl.emit.xml` |
-| `png`   | `STEM.png` (drawing, seed §5.6)         | `layoutdsl.emit.png` |
+| `xml`   | `STEM.xml` (building XML, the thesis, §5.2)    | `layoutdsl.emit.xml` |
+| `png`   | `STEM.png` (drawing, the thesis, §5.6)         | `layoutdsl.emit.png` |
 | `world` | `STEM.world` + its bitmap `STEM.world.png` (Stage) | `layoutdsl.emit.stage` |
 | `map`   | `STEM.pgm` + `STEM.yaml` (ROS map_server) | `layoutdsl.emit.rosmap` |
 

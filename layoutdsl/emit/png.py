@@ -1,4 +1,4 @@
-"""The drawing (seed §5.6): walls, tinted rooms with their id and label, doors, implicit
+"""The drawing (the thesis, §5.6): walls, tinted rooms with their id and label, doors, implicit
 portals, obstacles, a scale bar and a legend.
 
 Two steps, so the drawing can be golden-tested without comparing pixels:
@@ -216,7 +216,7 @@ def _portal_primitives(layout: Layout, portal: Portal, frame: _Frame, wall_px: i
     cx, cy = portal.centre
     items: list[Primitive] = []
     tick_px = max(1, wall_px // 2)
-    # a dashed line across the opening: no barrier, yet two spaces (seed §5.2)
+    # a dashed line across the opening: no barrier, yet two spaces (the thesis, §5.2)
     dash_px = max(1, wall_px // 3)
     tag = f"{'door' if portal.kind == 'e' else 'implicit portal'} {portal.a}-{portal.b}"
     if portal.vertical:

@@ -6,7 +6,7 @@ Two entry points, one grid type:
   wall, room interiors are free, and every portal carves an opening of its width through
   the wall gap between its two rooms, so the free space connects two rooms exactly where
   the layout has a portal between them.
-- `rasterize_building` for a building XML plan (seed §6.3.6): WALL segments drawn as lines
+- `rasterize_building` for a building XML plan (the thesis, §6.3.6): WALL segments drawn as lines
   of a fixed width, room polygons painted free, each PORTAL carved as a door opening of
   the plan's door length along the wall it sits on; outside every space is occupied.
 

@@ -1,4 +1,4 @@
-"""Stage world writer (seed §6.3.2, §6.3.6): `STEM.world` and its bitmap `STEM.world.png`.
+"""Stage world writer (the thesis, §6.3.2, §6.3.6): `STEM.world` and its bitmap `STEM.world.png`.
 
 The bitmap is the shared rasterization (`layoutdsl.emit.raster.rasterize_layout`): walls black,
 free space and door openings white, cropped to the outer walls with a one-cell black frame.

@@ -1,4 +1,4 @@
-"""Building XML writer (seed §5.2, §5.7): a Layout in the format of the real plans.
+"""Building XML writer (the thesis, §5.2, §5.7): a Layout in the format of the real plans.
 
 Units follow the real files: 1 file unit = 1 cm (`represented_distance` 90 pixel ↔
 `real_distance` 90 cm), x to the right, y DOWNWARDS: y_file = (height − y_m) × 100. Space ids

@@ -1,4 +1,4 @@
-"""Areas and room sizes of a plan, in square metres and metres (seed §5.3.1, §6.1.1)."""
+"""Areas and room sizes of a plan, in square metres and metres (the thesis, §5.3.1, §6.1.1)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Import real floor plans: building XML -> `Building` -> `Spec` (seed §5.2, §5.3).
+"""Import real floor plans: building XML -> `Building` -> `Spec` (the thesis, §5.2, §5.3).
 
 `read_building` is the project's one building-XML reader (safe against XML attacks, every
 problem a located diagnostic); `convert` applies the thesis' rectangularization and variance

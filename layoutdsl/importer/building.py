@@ -1,4 +1,4 @@
-"""A building XML file (seed §5.2) in memory: spaces, walls and portals, in file units.
+"""A building XML file (the thesis, §5.2) in memory: spaces, walls and portals, in file units.
 
 Coordinates stay as the file has them: integer-ish "pixels", y growing downwards.
 `Building.metres_per_unit` converts. The importer reads real plans into this model, the
@@ -95,7 +95,7 @@ class Space:
 
     @property
     def rectangularization_ratio(self) -> float:
-        """sqrt(polygon area / bounding-box area) (seed §5.3.1): the factor that turns the
+        """sqrt(polygon area / bounding-box area) (the thesis, §5.3.1): the factor that turns the
         bounding box into a rectangle of the room's area. At most 1 (a self-intersecting
         polygon can claim more than its box; a room never fills more)."""
         box = self.bbox.width * self.bbox.height
@@ -132,7 +132,7 @@ class Building:
 
     def spec_room_ids(self) -> dict[str, str]:
         """Space id -> spec room id: type letter and order within the type, in file order
-        (R0, R1, ..., C0, ..., E0, ...; seed §5.7)."""
+        (R0, R1, ..., C0, ..., E0, ...; the thesis, §5.7)."""
         counters: dict[str, int] = {}
         ids: dict[str, str] = {}
         for space in self.spaces:

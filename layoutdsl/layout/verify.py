@@ -5,7 +5,7 @@ the optimisation model on purpose, so a modelling mistake cannot hide itself. Ev
 is verified before anything is written; a layout with violations is an error, never an
 output.
 
-Rules (seed §5.5.1, with the adjacency rule corrected as the scouting notes require):
+Rules (the thesis, §5.5.1, with the adjacency rule corrected as the scouting notes require):
 - every spec room is placed exactly once, with finite numbers, its type and label;
 - inside the boundary (5.7);
 - sizes within bounds in one of the two orientations (5.4, 5.5): the thesis enforces the

@@ -1,4 +1,4 @@
-"""The thesis' MIQP (seed §5.5.1) as a Pyomo model: a pure function of the checked spec.
+"""The thesis' MIQP (§5.5.1) as a Pyomo model: a pure function of the checked spec.
 
 Every constraint family is one unit of `equations.py` that adds one named Block carrying
 its equation number (`m.eq5_4_min_size` ... `m.eq5_13_cluster`), so the code can be held

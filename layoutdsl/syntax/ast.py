@@ -2,7 +2,7 @@
 
 Lengths are metres. Coordinates are in the boundary's frame: origin at the boundary's
 bottom-left corner, x to the right, y upwards, and a rectangle's (x, y) is its bottom-left
-corner (seed §5.4). Spans never take part in equality, so `parse(format(spec)) == spec`
+corner (the thesis, §5.4). Spans never take part in equality, so `parse(format(spec)) == spec`
 compares content only.
 """
 

@@ -88,7 +88,7 @@ E_BOUNDARY_SIZE_TWICE = register(
 E_NO_BOUNDARY = register(
     "E016", Severity.ERROR, "missing boundary",
     "Reports a spec without a `boundary` section, or a `boundary` section without its `w h` line.",
-    "Rooms are placed inside the boundary; without it the problem is not defined (seed §5.4).",
+    "Rooms are placed inside the boundary; without it the problem is not defined (the thesis, §5.4).",
     "boundary\nO1 2 2 1 1     # obstacle but no size line",
 )  # fmt: skip
 E_NO_ROOMS = register(

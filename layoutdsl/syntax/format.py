@@ -1,6 +1,6 @@
 """ast.Spec -> canonical spec text (`layoutdsl fmt`, and how imported specs are written).
 
-The canonical form is the thesis layout (seed §5.4): the sections `rooms`, `boundary`,
+The canonical form is the thesis layout (the thesis, §5.4): the sections `rooms`, `boundary`,
 `adjacencies`, `positions`, `connections`, `clusters` in that order, single spaces between
 values, one blank line between sections. Extensions appear only when they carry
 information: per-room weights other than 1, a `hints` section when there are hints, and a

@@ -1,4 +1,4 @@
-"""The shared rasterization on the 24 real plans (seed §6.3.6): every door opens."""
+"""The shared rasterization on the 24 real plans (the thesis, §6.3.6): every door opens."""
 
 from __future__ import annotations
 
