@@ -59,3 +59,12 @@ def compiled_spec_layouts() -> dict[str, tuple]:
         assert result.layout is not None, [d.message for d in result.diagnostics]
         compiled[path.stem] = (spec, result.layout)
     return compiled
+
+
+def pytest_report_header(config) -> str:
+    from real_plans import CORPUS, CORPUS_MISSING, corpus_plans
+
+    found = corpus_plans()
+    if found:
+        return f"real plans: examples/floorplans and the {len(found)}-plan corpus at {CORPUS}"
+    return f"real plans: examples/floorplans only; {CORPUS_MISSING}"

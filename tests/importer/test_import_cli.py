@@ -13,7 +13,7 @@ from layoutdsl.api import lint_source
 from layoutdsl.cli import main
 from layoutdsl.diagnostics.source import Source
 
-FIXTURES = Path(__file__).parents[1] / "fixtures" / "floorplans"
+from real_plans import EXAMPLES as FIXTURES
 LAMUNIERE = FIXTURES / "school_Lamuniere1.xml"
 
 

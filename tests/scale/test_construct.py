@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
-from pathlib import Path
 
 import pytest
 
@@ -18,7 +17,7 @@ from layoutdsl.layout.verify import verify
 
 from ._specs import adjacent, cycle_spec, room, tree_spec
 
-FLOORPLANS = Path(__file__).resolve().parents[3] / "shared" / "floorplans"
+from real_plans import EXAMPLES
 
 
 def assert_verified(spec, rects) -> None:
@@ -92,12 +91,11 @@ def test_own_check_rejects_overlap_and_missing_wall():
     assert hard_violations(spec, broken)
 
 
-@pytest.mark.skipif(not FLOORPLANS.is_dir(), reason="shared floor plans not present")
 @pytest.mark.parametrize("plan", ["school_Lamuniere1.xml", "school_Sabadell3.xml"])
 def test_small_real_plans_construct_fast(plan):
     from layoutdsl.importer import import_building
 
-    spec, diagnostics = import_building(FLOORPLANS / plan)
+    spec, diagnostics = import_building(EXAMPLES / plan)
     assert spec is not None, diagnostics
     began = time.monotonic()
     rects = construct_start(spec, deadline=began + 30)
