@@ -11,8 +11,8 @@ from layoutdsl.syntax.ast import Settings
 from layoutdsl.model import build_model
 from layoutdsl.solve import SolveOptions, _add_start, _translate, relative_gap, solve
 
-from ._cases import room, spec
-from ._planted import planted
+from spec_cases import room, spec
+from planted import planted
 
 
 def test_flags_override_settings_and_unset_flags_keep_them():

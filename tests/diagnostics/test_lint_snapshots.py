@@ -14,7 +14,7 @@ import pytest
 from layoutdsl.cli import main
 from layoutdsl.diagnostics import load_all_codes
 
-DIAGNOSTICS = Path(__file__).resolve().parent.parent / "diagnostics"
+DIAGNOSTICS = Path(__file__).resolve().parent
 CASES = sorted(DIAGNOSTICS.glob("*.lay"))
 
 

@@ -8,7 +8,7 @@ from pyomo.repn import generate_standard_repn
 from layoutdsl.syntax.ast import Adjacency, Position
 from layoutdsl.model import CONSTRAINT_FAMILIES, THESIS_AS_WRITTEN, build_model
 
-from ._cases import room, spec
+from spec_cases import room, spec
 
 SPEC = spec(
     "model",

@@ -11,7 +11,7 @@ from layoutdsl.model import build_model, rects_from_model
 from layoutdsl.solve import SolveOptions, solve
 from layoutdsl.layout.verify import verify
 
-from ._cases import CASES, Case
+from spec_cases import CASES, Case
 
 OPTIONS = SolveOptions(time_limit=10, gap=0.01, seed=0, quiet=True)
 

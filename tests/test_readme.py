@@ -10,7 +10,7 @@ from layoutdsl.diagnostics import load_all_codes
 from layoutdsl.syntax.format import format_source
 from layoutdsl.diagnostics.source import Source
 
-README = Path(__file__).resolve().parents[2] / "README.md"
+README = Path(__file__).resolve().parents[1] / "README.md"
 START, END = "<!-- codes:start -->", "<!-- codes:end -->"
 
 
@@ -48,7 +48,7 @@ def test_complete_example_lints_clean_and_is_canonical() -> None:
 
 
 def test_readme_opens_with_two_commands_and_ci_runs_the_second():
-    root = Path(__file__).resolve().parents[2]
+    root = Path(__file__).resolve().parents[1]
     readme = (root / "README.md").read_text(encoding="utf-8")
     quick_start = readme.split("## Quick start", 1)[1]
     block = quick_start.split("```", 2)[1].strip().splitlines()

@@ -9,7 +9,7 @@ from layoutdsl.compile import compile_spec
 from layoutdsl.compile.explain import E901, conflicting_groups, constraint_groups, scip_feasibility, spec_without
 from layoutdsl.solve import SolveOptions
 
-from ._cases import room, spec
+from spec_cases import room, spec
 from layoutdsl.syntax.ast import Adjacency, Position
 
 SOLVE = Path(__file__).resolve().parents[1] / "diagnostics" / "solve"

@@ -26,7 +26,7 @@ from layoutdsl.model import (
 from layoutdsl.solve import SolveOptions, polish, solve
 from layoutdsl.layout.verify import verify
 
-from ._cases import room, spec
+from spec_cases import room, spec
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -217,7 +217,7 @@ def test_polish_finds_the_best_geometry_for_the_starts_relations():
 def test_a_39_room_compile_keeps_its_time_limit():
     import time
 
-    from ._planted import planted
+    from planted import planted
 
     big, _ = planted(6, 3)
     began = time.monotonic()
@@ -227,7 +227,7 @@ def test_a_39_room_compile_keeps_its_time_limit():
 
 
 def test_a_39_room_planted_start_is_polished_and_verified():
-    from ._planted import planted
+    from planted import planted
 
     big, rects = planted(6, 3)
     result = compile_spec(big, SolveOptions(time_limit=3, quiet=True), start=rects)
@@ -241,7 +241,7 @@ def test_neighbourhood_search_improves_a_start_and_depends_only_on_the_seed():
 
     from layoutdsl.solve import improve_by_neighbourhoods
 
-    from ._planted import planted
+    from planted import planted
 
     spec_, rects = planted(2, 2)  # 10 rooms
     results = []

@@ -15,7 +15,7 @@ from layoutdsl.compile.construct import (
 )
 from layoutdsl.layout.verify import verify
 
-from ._specs import adjacent, cycle_spec, room, tree_spec
+from _specs import adjacent, cycle_spec, room, tree_spec
 
 from real_plans import EXAMPLES
 

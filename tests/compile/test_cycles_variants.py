@@ -18,7 +18,7 @@ from layoutdsl.solve import SolveOptions
 from layoutdsl.compile.variants import compile_variants, diversity
 from layoutdsl.layout.verify import verify
 
-from ._specs import adjacent, cycle_spec, room, tree_spec
+from _specs import adjacent, cycle_spec, room, tree_spec
 from dataclasses import replace
 
 
