@@ -442,6 +442,35 @@ def _continuous_by_room(model: pyo.ConcreteModel) -> dict[str, list]:
     return {r: [family[r] for family in families] for r in model.rooms}
 
 
+def _nearest_rooms(model: pyo.ConcreteModel, centre_room: str, size: int) -> set[str]:
+    """`centre_room` and its `size - 1` nearest rooms (centre distance, ties by id)."""
+    centres = {r: (pyo.value(model.x[r]) + pyo.value(model.w[r]) / 2,
+                   pyo.value(model.y[r]) + pyo.value(model.h[r]) / 2) for r in model.rooms}
+    cx, cy = centres[centre_room]
+    near = sorted(model.rooms, key=lambda r: ((centres[r][0] - cx) ** 2 + (centres[r][1] - cy) ** 2, r))
+    return set(near[:size])
+
+
+def _free_only(scip_model, binaries, continuous, free_binaries: set[str], free_rooms: set[str]) -> None:
+    """Fix every SCIP variable at its current value except the free rooms' (their bounds back)."""
+    for var, scip_var, owners in binaries:
+        if owners and all(owner in free_binaries for owner in owners):
+            scip_model.chgVarLb(scip_var, 0)
+            scip_model.chgVarUb(scip_var, 1)
+        else:
+            value = round(var.value)
+            scip_model.chgVarLb(scip_var, value)
+            scip_model.chgVarUb(scip_var, value)
+    for room, entries in continuous.items():
+        for var, scip_var, (lb, ub) in entries:
+            if room in free_rooms:
+                scip_model.chgVarLb(scip_var, -scip_model.infinity() if lb is None else lb)
+                scip_model.chgVarUb(scip_var, scip_model.infinity() if ub is None else ub)
+            else:
+                scip_model.chgVarLb(scip_var, var.value)
+                scip_model.chgVarUb(scip_var, var.value)
+
+
 def improve_by_neighbourhoods(
     model: pyo.ConcreteModel,
     options: SolveOptions,
@@ -457,8 +486,8 @@ def improve_by_neighbourhoods(
     Each round frees one room and its `size - 1` nearest rooms: their binaries (relations,
     orientations, sides) and their geometry; every other room keeps its place, size and
     relations. SCIP re-places the neighbourhood (warm-started from the current layout, at
-    most `sub_nodes` branch-and-bound nodes and `sub_seconds`). After an improvement, a polish round keeps every binary and frees
-    all geometry. Rooms are visited in an order drawn from the seed; the search stops at the
+    most `sub_nodes` branch-and-bound nodes and `sub_seconds`). After an improvement, a polish
+    round keeps every binary and frees all geometry. Rooms are visited in an order drawn from the seed; the search stops at the
     deadline or after a full pass without an improvement; rounds stop at a node limit, so
     unless a round or the whole search runs into its time limit, the result depends only on
     the seed. Branch-and-bound over the whole model rarely improves a
@@ -491,31 +520,10 @@ def improve_by_neighbourhoods(
         if polish_next:
             free_binaries, free_rooms = set(), set(model.rooms)
         else:
-            centre_room = order[visits % len(order)]
+            free_rooms = free_binaries = _nearest_rooms(model, order[visits % len(order)], size)
             visits += 1
-            centres = {r: (pyo.value(model.x[r]) + pyo.value(model.w[r]) / 2,
-                           pyo.value(model.y[r]) + pyo.value(model.h[r]) / 2) for r in model.rooms}
-            cx, cy = centres[centre_room]
-            near = sorted(model.rooms, key=lambda r: ((centres[r][0] - cx) ** 2 + (centres[r][1] - cy) ** 2, r))
-            free_rooms = set(near[:size])
-            free_binaries = free_rooms
         scip_model.freeTransform()
-        for var, scip_var, owners in binaries:
-            if owners and all(owner in free_binaries for owner in owners):
-                scip_model.chgVarLb(scip_var, 0)
-                scip_model.chgVarUb(scip_var, 1)
-            else:
-                value = round(var.value)
-                scip_model.chgVarLb(scip_var, value)
-                scip_model.chgVarUb(scip_var, value)
-        for room, entries in continuous.items():
-            for var, scip_var, (lb, ub) in entries:
-                if room in free_rooms:
-                    scip_model.chgVarLb(scip_var, -scip_model.infinity() if lb is None else lb)
-                    scip_model.chgVarUb(scip_var, scip_model.infinity() if ub is None else ub)
-                else:
-                    scip_model.chgVarLb(scip_var, var.value)
-                    scip_model.chgVarUb(scip_var, var.value)
+        _free_only(scip_model, binaries, continuous, free_binaries, free_rooms)
         scip_model.setParam("limits/time", max(0.05, min(sub_seconds, deadline - time.monotonic())))
         _add_start(interface, scip_model, model, False, partial_fallback=False)
         _optimize(scip_model, watch)

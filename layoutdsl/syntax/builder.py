@@ -433,85 +433,73 @@ def _build_settings(
 # ===== Assembly =====
 
 
-def build_spec(
-    entries: list[Entry],
-    headers: list[SectionHeader],
-    *,
-    path: str,
-    default_name: str,
-    had_syntax_errors: bool = False,
-) -> tuple[Spec, list[Diagnostic]]:
-    """Assemble the parsed entry lines into a Spec, reporting value errors."""
-    diagnostics: list[Diagnostic] = []
-    rooms: list[Room] = []
-    obstacles: list[Obstacle] = []
+@dataclass(slots=True)
+class _Sections:
+    """The built entry lines, sorted by what they are, before assembly into a Spec."""
+
+    rooms: list[Room] = field(default_factory=list)
+    obstacles: list[Obstacle] = field(default_factory=list)
     size: tuple[_Num, _Num] | None = None
     size_span: Span | None = None
-    adjacencies: list[Adjacency] = []
-    positions: list[Position] = []
-    connections: list[Connection] = []
-    clusters: list[tuple[_Word, list[ClusterMember]]] = []
-    hints: list[Hint] = []
-    setting_lines: list[tuple[_Word, list[_Word], int]] = []
+    adjacencies: list[Adjacency] = field(default_factory=list)
+    positions: list[Position] = field(default_factory=list)
+    connections: list[Connection] = field(default_factory=list)
+    clusters: list[tuple[_Word, list[ClusterMember]]] = field(default_factory=list)
+    hints: list[Hint] = field(default_factory=list)
+    setting_lines: list[tuple[_Word, list[_Word], int]] = field(default_factory=list)
+
+
+_NODE_LISTS = {Room: "rooms", Obstacle: "obstacles", Adjacency: "adjacencies", Position: "positions",
+               Connection: "connections", Hint: "hints"}  # fmt: skip
+
+
+def _sort_entries(entries: list[Entry], path: str, diagnostics: list[Diagnostic]) -> _Sections:
+    """Each entry's node into its list; cluster members under the cluster id above them."""
+    found = _Sections()
     for entry in entries:
         node = entry.node
-        if isinstance(node, Room):
-            rooms.append(node)
-        elif isinstance(node, Obstacle):
-            obstacles.append(node)
-        elif isinstance(node, Adjacency):
-            adjacencies.append(node)
-        elif isinstance(node, Position):
-            positions.append(node)
-        elif isinstance(node, Connection):
-            connections.append(node)
-        elif isinstance(node, Hint):
-            hints.append(node)
+        if type(node) in _NODE_LISTS:
+            getattr(found, _NODE_LISTS[type(node)]).append(node)
         elif isinstance(node, ClusterMember):
-            if not clusters:
+            if not found.clusters:
                 diagnostics.append(Diagnostic(
                     E_MEMBER_BEFORE_CLUSTER, f"cluster member `{node.room}` before any cluster id", path,
                     node.span, label="belongs to no cluster",
                     help="add a line with the cluster's id (for example `K0`) above its rooms",
                 ))  # fmt: skip
             else:
-                clusters[-1][1].append(node)
+                found.clusters[-1][1].append(node)
         elif node[0] == "cluster":
-            clusters.append((node[1], []))
+            found.clusters.append((node[1], []))
         elif node[0] == "size":
             span = Span(entry.line, node[1].span.col, entry.line, node[2].span.end_col)
-            if size is not None:
+            if found.size is not None:
                 diagnostics.append(Diagnostic(
                     E_BOUNDARY_SIZE_TWICE, "boundary size given twice", path, span, label="second size",
-                    help="keep one `w h` line", notes=(f"first given on line {size_span.line}",),
+                    help="keep one `w h` line", notes=(f"first given on line {found.size_span.line}",),
                 ))  # fmt: skip
             else:
-                size, size_span = (node[1], node[2]), span
+                found.size, found.size_span = (node[1], node[2]), span
         elif node[0] == "setting":
-            setting_lines.append((node[1], node[2], entry.line))
+            found.setting_lines.append((node[1], node[2], entry.line))
+    return found
 
-    header_of = {}
+
+def _header_spans(headers: list[SectionHeader]) -> dict[str, Span]:
+    """Section name -> the span of its (first) header word."""
+    spans: dict[str, Span] = {}
     for header in headers:
-        header_of.setdefault(header.name, header)
+        if header.name not in spans:
+            col = header.text.index(header.name) + 1
+            spans[header.name] = Span(header.line, col, header.line, col + len(header.name))
+    return spans
 
-    def header_span(name: str) -> Span | None:
-        header = header_of.get(name)
-        if header is None:
-            return None
-        col = header.text.index(name) + 1
-        return Span(header.line, col, header.line, col + len(name))
 
-    settings, name, setting_diagnostics = _build_settings(setting_lines, path, header_span("settings"))
-    diagnostics.extend(setting_diagnostics)
-
-    boundary = None
-    if size is not None:
-        boundary = Boundary(
-            size[0].value, size[1].value, tuple(obstacles), span=size_span,
-            spans=MappingProxyType({"w": size[0].span, "h": size[1].span}),
-        )  # fmt: skip
-    elif not had_syntax_errors:
-        span = header_span("boundary")
+def _missing_sections(found: _Sections, header_spans: dict[str, Span], path: str) -> list[Diagnostic]:
+    """E016 (no boundary size) and E017 (no rooms), located at the section's header if any."""
+    diagnostics = []
+    if found.size is None:
+        span = header_spans.get("boundary")
         if span is None:
             diagnostics.append(Diagnostic(
                 E_NO_BOUNDARY, "spec has no `boundary` section", path, Span(1, 1, 1, 2),
@@ -522,26 +510,51 @@ def build_spec(
                 E_NO_BOUNDARY, "`boundary` section has no size line", path, span,
                 label="no `w h` line", help="add a line `w h` (metres) under `boundary`",
             ))  # fmt: skip
-    if not rooms and not had_syntax_errors:
-        span = header_span("rooms")
+    if not found.rooms:
+        span = header_spans.get("rooms")
         diagnostics.append(Diagnostic(
             E_NO_ROOMS, "spec has no rooms" if span else "spec has no `rooms` section", path,
             span or Span(1, 1, 1, 2), label="no rooms",
             help="add a section `rooms` with one line per room",
         ))  # fmt: skip
+    return diagnostics
 
+
+def build_spec(
+    entries: list[Entry],
+    headers: list[SectionHeader],
+    *,
+    path: str,
+    default_name: str,
+    had_syntax_errors: bool = False,
+) -> tuple[Spec, list[Diagnostic]]:
+    """Assemble the parsed entry lines into a Spec, reporting value errors."""
+    diagnostics: list[Diagnostic] = []
+    found = _sort_entries(entries, path, diagnostics)
+    header_spans = _header_spans(headers)
+    settings, name, setting_diagnostics = _build_settings(found.setting_lines, path, header_spans.get("settings"))
+    diagnostics.extend(setting_diagnostics)
+    if not had_syntax_errors:  # after a syntax error the missing line may be the broken one
+        diagnostics.extend(_missing_sections(found, header_spans, path))
+    boundary = None
+    if found.size is not None:
+        w, h = found.size
+        boundary = Boundary(
+            w.value, h.value, tuple(found.obstacles), span=found.size_span,
+            spans=MappingProxyType({"w": w.span, "h": h.span}),
+        )  # fmt: skip
     spec = Spec(
         name=name if name is not None else default_name,
-        rooms=tuple(rooms),
+        rooms=tuple(found.rooms),
         boundary=boundary,
-        adjacencies=tuple(adjacencies),
-        positions=tuple(positions),
-        connections=tuple(connections),
+        adjacencies=tuple(found.adjacencies),
+        positions=tuple(found.positions),
+        connections=tuple(found.connections),
         clusters=tuple(
             Cluster(word.value, tuple(members), span=word.span, spans=MappingProxyType({"id": word.span}))
-            for word, members in clusters
+            for word, members in found.clusters
         ),
-        hints=tuple(hints),
+        hints=tuple(found.hints),
         settings=settings,
         path=path,
     )
