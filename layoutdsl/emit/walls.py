@@ -39,9 +39,13 @@ MIN_WALL_THICKNESS = DEFAULT_RESOLUTION
 """The thinnest wall built: one cell of the default occupancy map (5 cm)."""
 
 # Coordinates are rounded to this many decimals (1 nm) so that edges computed along
-# different paths (a room's edge, its neighbour's wall face) coincide exactly and the
-# merge leaves no sliver boxes from float noise.
+# different paths (a room's edge, its neighbour's wall face) coincide exactly.
 _DECIMALS = 9
+
+SNAP = 1e-3
+"""Edges closer than this (1 mm) along an axis are made one: solver output aligns rooms
+only to its tolerance, and a sub-millimetre sliver box would be a degenerate collision
+shape (MuJoCo rejects a box of size 0) while no simulator could tell the difference."""
 
 Rect = tuple[float, float, float, float]
 """(x0, y0, x1, y1) in metres, x0 < x1 and y0 < y1."""
@@ -142,12 +146,28 @@ def _portal_rects(layout: Layout, interiors: dict[str, Rect], inset: float) -> t
     return fills, openings
 
 
+def _snapped_axis(values: list[float]) -> np.ndarray:
+    """The distinct coordinates along an axis, keeping the first of any run closer than SNAP."""
+    ordered = np.unique(np.array(values))
+    kept = [ordered[0]]
+    for value in ordered[1:]:
+        if value - kept[-1] >= SNAP:
+            kept.append(value)
+    return np.array(kept)
+
+
+def _index(axis: np.ndarray, value: float) -> int:
+    """Index of the kept coordinate that stands for `value` (the nearest one)."""
+    position = int(np.searchsorted(axis, value))
+    if position == len(axis) or (position > 0 and value - axis[position - 1] < axis[position] - value):
+        position -= 1
+    return position
+
+
 def _paint(grid: np.ndarray, xs: np.ndarray, ys: np.ndarray, rect: Rect, value: bool) -> None:
     x0, y0, x1, y1 = rect
-    if not (x1 > x0 and y1 > y0):
-        return
-    i0, i1 = np.searchsorted(xs, [x0, x1])
-    j0, j1 = np.searchsorted(ys, [y0, y1])
+    i0, i1 = _index(xs, x0), _index(xs, x1)
+    j0, j1 = _index(ys, y0), _index(ys, y1)
     grid[j0:j1, i0:i1] = value
 
 
@@ -183,8 +203,8 @@ def wall_geometry(layout: Layout, height: float = DEFAULT_WALL_HEIGHT) -> WallGe
     surrounds = [_rect(x0 - thickness, y0 - thickness, x1 + thickness, y1 + thickness) for x0, y0, x1, y1 in interiors.values()]
     fills, openings = _portal_rects(layout, interiors, inset)
     rects = [*surrounds, *interiors.values(), *fills, *openings]
-    xs = np.unique(np.array([c for r in rects for c in (r[0], r[2])]))
-    ys = np.unique(np.array([c for r in rects for c in (r[1], r[3])]))
+    xs = _snapped_axis([c for r in rects for c in (r[0], r[2])])
+    ys = _snapped_axis([c for r in rects for c in (r[1], r[3])])
     grid = np.zeros((len(ys) - 1, len(xs) - 1), dtype=bool)
     for rect in (*surrounds, *fills):
         _paint(grid, xs, ys, rect, True)
