@@ -16,7 +16,7 @@ import mujoco
 import numpy as np
 import pytest
 
-from _emit_support import planted_layouts, school_layout
+from _emit_support import HERE, load_case, planted_layouts, school_layout
 from _sim_support import distance_to_boxes, distance_to_occupied, grid_ray_distances, large_layout
 from layoutdsl.emit import mjcf, render_outputs
 from layoutdsl.emit.stage import LASER_FOV, LASER_RANGE, robot_start_room
@@ -123,7 +123,7 @@ def _poses(layout: Layout) -> list[tuple[float, float, float]]:
     return [(*room.centre, yaw) for room, yaw in zip(rooms, (0.4, 2.1, -1.9), strict=True)]
 
 
-LAYOUTS = {**planted_layouts(), "synthetic_school_106": school_layout()}
+LAYOUTS = {**planted_layouts(), "synthetic_school_106": school_layout(), "thin_walls": load_case(HERE / "thin_walls")}
 
 
 @pytest.mark.parametrize("name", sorted(LAYOUTS) + ["office_floorplanLOWER"])
