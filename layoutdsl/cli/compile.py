@@ -114,6 +114,10 @@ def run(args: argparse.Namespace) -> int:
     formats = _formats(args.emit)
     if isinstance(formats, str):
         return _error(formats)
+    from layoutdsl.emit import MAX_WALL_HEIGHT
+
+    if args.wall_height > MAX_WALL_HEIGHT:
+        return _error(f"--wall-height {args.wall_height:g} is taller than {MAX_WALL_HEIGHT:g} m")
     if args.robot_room is not None and spec.room(args.robot_room) is None:
         known = ", ".join(spec.room_ids[:10])
         return _error(f"--robot-room `{args.robot_room}` is not a room of the spec (rooms: {known})")
