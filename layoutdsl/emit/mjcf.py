@@ -89,12 +89,15 @@ def mjcf_tree(layout: Layout, geometry: WallGeometry, *, robot_room: str | None 
     visual = ET.SubElement(root, "visual")
     # the free camera frames the whole building; far clipping covers its diagonal
     ET.SubElement(visual, "global", azimuth="-90", elevation="-60")
+    # a soft headlight: the sun alone leaves the walls facing away from it black
+    ET.SubElement(visual, "headlight", ambient=".25 .25 .25", diffuse=".35 .35 .35", specular="0 0 0")
     ET.SubElement(visual, "map", znear="0.01", zfar=vector(max(50.0, 4 * span)))
     ET.SubElement(root, "statistic", center=vector(cx, cy, 0), extent=vector(span / 2 + geometry.height))
     _assets(root)
     worldbody = ET.SubElement(root, "worldbody")
+    # no shadows: one shadow map stretched over a whole building speckles every floor
     ET.SubElement(worldbody, "light", name="sun", pos=vector(cx, cy, geometry.height + span),
-                  dir="0.3 0.2 -1", directional="true", diffuse=".7 .7 .7")
+                  dir="0.3 0.2 -1", directional="true", diffuse=".55 .55 .55", castshadow="false")
     ET.SubElement(worldbody, "geom", name="floor", type="plane", material="floor",
                   pos=vector(cx, cy, 0), size=vector((x1 - x0) / 2 + 1, (y1 - y0) / 2 + 1, 0.1))
     half_height = geometry.height / 2

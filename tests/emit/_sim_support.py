@@ -15,15 +15,16 @@ from layoutdsl.layout import Layout
 from layoutdsl.raster import OccupancyGrid
 
 ROOT = Path(__file__).resolve().parents[2]
-LARGE_PLAN = ROOT / "tests" / "fixtures" / "layouts" / "office_floorplanLOWER.layout.json"
-"""A compiled 55-room layout of a real office plan (tests/fixtures/layouts/README.md)."""
+FIXTURE_LAYOUTS = ROOT / "tests" / "fixtures" / "layouts"
+LARGE_PLANS = ("office_floorplanLOWER", "school_stjoseph_scatholichighschool")
+"""Compiled layouts of real plans, 55 and 105 rooms (tests/fixtures/layouts/README.md)."""
 
 MARCH_STEP_FRACTION = 20
 """Rays march in steps of 1/20 cell: a hit is located to 2.5 mm on the 5 cm grid."""
 
 
-def large_layout() -> Layout:
-    return Layout.from_json(LARGE_PLAN.read_text())
+def large_layout(name: str = LARGE_PLANS[0]) -> Layout:
+    return Layout.from_json((FIXTURE_LAYOUTS / f"{name}.layout.json").read_text())
 
 
 def grid_ray_distances(grid: OccupancyGrid, x: float, y: float, directions: np.ndarray, max_range: float) -> np.ndarray:

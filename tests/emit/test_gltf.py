@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 from _emit_support import load_case, planted_layouts, school_layout, HERE
-from _sim_support import large_layout
+from _sim_support import LARGE_PLANS, large_layout
 from layoutdsl.emit import gltf
 from layoutdsl.emit.walls import wall_geometry
 from layoutdsl.layout import Layout
@@ -31,7 +31,7 @@ LAYOUTS = {
 
 
 def _layout(name: str) -> Layout:
-    return large_layout() if name == "office_floorplanLOWER" else LAYOUTS[name]
+    return large_layout(name) if name in LARGE_PLANS else LAYOUTS[name]
 
 
 def _reload(layout: Layout, wall_height: float = 2.5):
@@ -96,7 +96,7 @@ def _door_width(open_cells: np.ndarray, portal, grid: OccupancyGrid) -> int:
     return min(_run(open_cells[r, :], col) for r in (row - 1, row, row + 1))
 
 
-@pytest.mark.parametrize("name", sorted(LAYOUTS) + ["office_floorplanLOWER"])
+@pytest.mark.parametrize("name", sorted(LAYOUTS) + list(LARGE_PLANS))
 def test_mesh_slice_lies_on_the_map_walls(name: str) -> None:
     layout = _layout(name)
     grid = rasterize_layout(layout)

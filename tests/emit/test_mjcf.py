@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from _emit_support import HERE, load_case, planted_layouts, school_layout
-from _sim_support import distance_to_boxes, distance_to_occupied, grid_ray_distances, large_layout
+from _sim_support import LARGE_PLANS, distance_to_boxes, distance_to_occupied, grid_ray_distances, large_layout
 from layoutdsl.emit import mjcf, render_outputs
 from layoutdsl.emit.stage import LASER_FOV, LASER_RANGE, robot_start_room
 from layoutdsl.emit.walls import wall_geometry
@@ -126,9 +126,9 @@ def _poses(layout: Layout) -> list[tuple[float, float, float]]:
 LAYOUTS = {**planted_layouts(), "synthetic_school_106": school_layout(), "thin_walls": load_case(HERE / "thin_walls")}
 
 
-@pytest.mark.parametrize("name", sorted(LAYOUTS) + ["office_floorplanLOWER"])
+@pytest.mark.parametrize("name", sorted(LAYOUTS) + list(LARGE_PLANS))
 def test_rangefinders_agree_with_the_occupancy_grid(name: str) -> None:
-    layout = large_layout() if name == "office_floorplanLOWER" else LAYOUTS[name]
+    layout = large_layout(name) if name in LARGE_PLANS else LAYOUTS[name]
     grid = rasterize_layout(layout)
     model, data = _load(layout)
     # the robot starts where the Stage robot does and settles on its wheels

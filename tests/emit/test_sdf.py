@@ -19,17 +19,17 @@ from pathlib import Path
 import pytest
 
 from _emit_support import HERE, load_case, planted_layouts, school_layout
-from _sim_support import large_layout
+from _sim_support import LARGE_PLANS, large_layout
 from layoutdsl.emit import sdf
 from layoutdsl.emit.stage import robot_start_room
 from layoutdsl.emit.walls import wall_geometry
 
 LAYOUTS = {**planted_layouts(), "synthetic_school_106": school_layout(), "thin_walls": load_case(HERE / "thin_walls")}
-NAMES = sorted(LAYOUTS) + ["office_floorplanLOWER"]
+NAMES = sorted(LAYOUTS) + list(LARGE_PLANS)
 
 
 def _layout(name: str):
-    return large_layout() if name == "office_floorplanLOWER" else LAYOUTS[name]
+    return large_layout(name) if name in LARGE_PLANS else LAYOUTS[name]
 
 
 def _text(name: str) -> str:
