@@ -24,8 +24,8 @@ SDF_VERSION = "1.9"
 
 
 def _name(text: str) -> str:
-    """An SDFormat name: no '::' (scope separator) and not empty."""
-    cleaned = text.replace("::", "_").strip()
+    """An SDFormat name: no '::' (the scope separator), no leading '__' (reserved), not empty."""
+    cleaned = text.replace("::", "_").strip().lstrip("_")
     return cleaned or "building"
 
 

@@ -156,3 +156,11 @@ def test_world_walls_and_start_frame(name: str) -> None:
         assert (z, sz) == pytest.approx((1.5, 3.0))
     start = root.find("./world/frame[@name='robot_start']/pose").text.split()
     assert tuple(map(float, start[:2])) == pytest.approx(robot_start_room(layout).centre, abs=1e-6)
+
+
+def test_world_name_is_a_legal_sdformat_name() -> None:
+    from dataclasses import replace
+
+    layout = replace(planted_layouts()["office_small"], name="__lab::one")
+    root = ET.fromstring(sdf.render(layout, "plan")["plan.sdf"].decode())
+    assert root.find("world").get("name") == "lab_one"
