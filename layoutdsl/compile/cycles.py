@@ -21,6 +21,7 @@ from dataclasses import replace
 
 import networkx as nx
 
+from layoutdsl.compile import explain
 from layoutdsl.compile.pipeline import compile_from_start
 from layoutdsl.syntax.ast import Cluster, ClusterMember, Spec
 
@@ -154,6 +155,9 @@ def compile_with_cycles(
             return _as_cycles(result)
     if result is None:
         result = compile_from_start(current, replace(auto, time_limit=remaining()), progress=progress)
+    if result.layout is None:
+        status = result.outcome.status if result.outcome is not None else "time_limit"
+        result = replace(result, diagnostics=explain.restate_limit(result.diagnostics, spec, options, status))
     return _as_cycles(result)
 
 

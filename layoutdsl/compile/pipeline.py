@@ -147,7 +147,12 @@ def compile_from_start(
         timings["start"] = time.monotonic() - t0
         if rects_start is None and no_start_fallback is not None:
             left = replace(options, time_limit=max(0.1, deadline - time.monotonic()))
-            return no_start_fallback(spec, left, progress)
+            result = no_start_fallback(spec, left, progress)
+            if result.layout is None:
+                # the decomposition ran on what the construction left; the limit was the user's
+                status = result.outcome.status if result.outcome is not None else "time_limit"
+                result = replace(result, diagnostics=explain.restate_limit(result.diagnostics, spec, options, status))
+            return result
     if rects_start is not None:
         # a start that fails verification is never handed on as an answer
         start_layout = layout_from_rects(spec, rects_start)
