@@ -9,7 +9,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from layoutdsl.syntax.ast import Adjacency, Boundary, Room, Spec
-from layoutdsl.check import _planarity_core, check_spec, reachable_ratios
+from layoutdsl.check import check_spec, reachable_ratios
+from layoutdsl.check.topology import _planarity_core
 
 
 def _room(min_w, max_w, min_h, max_h, min_ar=1.0, max_ar=3.0, rtype="R") -> Room:
