@@ -158,3 +158,24 @@ CASES = [
         "one cluster offset keeps A and B within 0.5 m of their cluster points",
     ),
 ]
+
+
+SMALL_LAY = """\
+rooms
+A 3.2 4.8 4 2.4 3.6 3 1 3 R OFFICE
+B 2.4 3.6 3 2.4 3.6 3 1 3 R OFFICE
+C 6.4 9.6 8 1.6 2.4 2 1 6 C CORRIDOR onB
+
+boundary
+14 10
+
+adjacencies
+A C 0.9 e
+B C 0.9 e
+A B 0.9 e
+
+settings
+time_limit 20
+gap 0.02
+"""
+"""Three rooms around a corridor, as a spec file: small enough to compile in seconds."""

@@ -26,7 +26,7 @@ from layoutdsl.model import (
 from layoutdsl.solve import SolveOptions, polish, solve
 from layoutdsl.layout.verify import verify
 
-from spec_cases import room, spec
+from spec_cases import SMALL_LAY, room, spec
 
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -137,25 +137,6 @@ def _compile(*args: str, stdin: str | None = None) -> subprocess.CompletedProces
     return subprocess.run([sys.executable, "-m", "layoutdsl", "compile", *args], cwd=ROOT, input=stdin,
                           capture_output=True, text=True, timeout=120)
 
-
-SMALL_LAY = """\
-rooms
-A 3.2 4.8 4 2.4 3.6 3 1 3 R OFFICE
-B 2.4 3.6 3 2.4 3.6 3 1 3 R OFFICE
-C 6.4 9.6 8 1.6 2.4 2 1 6 C CORRIDOR onB
-
-boundary
-14 10
-
-adjacencies
-A C 0.9 e
-B C 0.9 e
-A B 0.9 e
-
-settings
-time_limit 20
-gap 0.02
-"""
 
 
 def test_compile_command_writes_json_and_outputs(tmp_path):

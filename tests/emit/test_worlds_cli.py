@@ -11,27 +11,9 @@ import pytest
 from _emit_support import ROOT, load_case
 from layoutdsl.diagnostics import exitcodes
 from layoutdsl.emit import EmitError, WORLD_3D_FORMATS, write_outputs
+from spec_cases import SMALL_LAY
 
 SMALL = Path(__file__).parent / "small_office"
-
-THREE_ROOMS = """\
-rooms
-A 3.2 4.8 4 2.4 3.6 3 1 3 R OFFICE
-B 2.4 3.6 3 2.4 3.6 3 1 3 R OFFICE
-C 6.4 9.6 8 1.6 2.4 2 1 6 C CORRIDOR onB
-
-boundary
-14 10
-
-adjacencies
-A C 0.9 e
-B C 0.9 e
-A B 0.9 e
-
-settings
-time_limit 20
-gap 0.02
-"""
 
 # Runs the CLI with trimesh made unimportable, as in an install without the sim extra.
 WITHOUT_TRIMESH = "import sys; sys.modules['trimesh'] = None; from layoutdsl.cli import main; sys.exit(main(sys.argv[1:]))"
@@ -80,7 +62,7 @@ def _compile(*args: str, script: str | None = None) -> subprocess.CompletedProce
 
 def test_compile_emits_3d_worlds_with_options(tmp_path: Path) -> None:
     spec = tmp_path / "office.lay"
-    spec.write_text(THREE_ROOMS)
+    spec.write_text(SMALL_LAY)
     done = _compile(str(spec), "-o", str(tmp_path / "out"), "-q", "--emit", "mjcf,sdf,gltf",
                     "--wall-height", "3", "--no-robot")
     assert done.returncode == exitcodes.OK, done.stderr
