@@ -34,7 +34,7 @@ import sys
 import time
 from dataclasses import dataclass
 
-from layoutdsl.layout.geometry import Rect, layout_from_rects
+from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
 from layoutdsl.syntax.ast import Room, Spec
 
 
@@ -94,8 +94,8 @@ class RoomSizes:
 # Relations between pairs, read off a seed geometry
 # ---------------------------------------------------------------------------------------
 
-DIRECTIONS = ("R", "L", "U", "D")
-"""Where the second thing of a pair lies relative to the first: right, left, up, down."""
+DIRECTIONS = SIDES
+"""Where the first thing of a pair lies relative to the second (layout.geometry.SIDES)."""
 
 Pair = tuple[str, str]
 """(room, room) or (room, obstacle), rooms in spec order."""
@@ -114,7 +114,7 @@ def _separations(a: Rect, b: Rect) -> tuple[float, float]:
 
 
 def _ordered_directions(a: Rect, b: Rect, index_a: int, index_b: int) -> tuple[str, str]:
-    """The x-direction and the y-direction of b relative to a that follow the centre order.
+    """The x-side and the y-side of a relative to b that follow the centre order.
 
     Ties are broken by the pair's indices, so the induced orders are strict and total:
     whatever axis each pair uses, no chain of "left of" or "below" constraints can close
@@ -123,7 +123,7 @@ def _ordered_directions(a: Rect, b: Rect, index_a: int, index_b: int) -> tuple[s
     (acx, acy), (bcx, bcy) = _centre(a), _centre(b)
     right = (bcx, index_b) > (acx, index_a)
     up = (bcy, index_b) > (acy, index_a)
-    return ("R" if right else "L", "U" if up else "D")
+    return ("left" if right else "right", "below" if up else "above")
 
 
 @dataclass(frozen=True, slots=True)
@@ -202,12 +202,12 @@ class _Box:
 
 
 def _add_direction(model, a: _Box, b: _Box, direction: str, gap: float, slack) -> None:
-    """b lies in `direction` of a with at least `gap` between them, up to `slack`."""
-    if direction == "R":
+    """a lies on the `direction` side of b with at least `gap` between them, up to `slack`."""
+    if direction == "left":
         model.addCons(a.x + a.w + gap - b.x <= slack)
-    elif direction == "L":
+    elif direction == "right":
         model.addCons(b.x + b.w + gap - a.x <= slack)
-    elif direction == "U":
+    elif direction == "below":
         model.addCons(a.y + a.h + gap - b.y <= slack)
     else:
         model.addCons(b.y + b.h + gap - a.y <= slack)
@@ -215,15 +215,15 @@ def _add_direction(model, a: _Box, b: _Box, direction: str, gap: float, slack) -
 
 def _add_adjacent(model, a: _Box, b: _Box, direction: str, walldim: float, wall: float,
                   slack) -> None:
-    """b touches a on the `direction` side: exactly one wall between, `wall` m shared."""
-    if direction in ("R", "L"):
-        first, second = (a, b) if direction == "R" else (b, a)
+    """a touches b on its `direction` side: exactly one wall between, `wall` m shared."""
+    if direction in ("left", "right"):
+        first, second = (a, b) if direction == "left" else (b, a)
         model.addCons(first.x + first.w + walldim - second.x <= slack)
         model.addCons(second.x - first.x - first.w - walldim <= slack)
         model.addCons(a.y + wall - b.y - b.h <= slack)
         model.addCons(b.y + wall - a.y - a.h <= slack)
     else:
-        first, second = (a, b) if direction == "U" else (b, a)
+        first, second = (a, b) if direction == "below" else (b, a)
         model.addCons(first.y + first.h + walldim - second.y <= slack)
         model.addCons(second.y - first.y - first.h - walldim <= slack)
         model.addCons(a.x + wall - b.x - b.w <= slack)

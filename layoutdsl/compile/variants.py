@@ -71,13 +71,13 @@ def variant_point(spec: Spec, seed: int, index: int) -> tuple[float, float]:
 
 
 def relation(a, b) -> str:
-    """Where b lies relative to a along the axis that separates them most: R, L, U or D."""
+    """Where a lies relative to b along the axis that separates them most (layout.geometry.SIDES)."""
     gap_x = max(b.x - a.x2, a.x - b.x2)
     gap_y = max(b.y - a.y2, a.y - b.y2)
     (acx, acy), (bcx, bcy) = a.centre, b.centre
     if gap_x >= gap_y:
-        return "R" if bcx > acx else "L"
-    return "U" if bcy > acy else "D"
+        return "left" if bcx > acx else "right"
+    return "below" if bcy > acy else "above"
 
 
 def diversity(layouts: list[Layout]) -> float | None:

@@ -14,6 +14,13 @@ from layoutdsl.syntax.ast import Spec
 Rect = tuple[float, float, float, float]
 """(x, y, w, h): bottom-left corner and size, metres, boundary frame."""
 
+SIDES = ("left", "right", "below", "above")
+"""Where the first rectangle of a pair lies relative to the second ("a is left of b"): the
+one direction convention of the model's ω (5.8), the construction and the variants."""
+
+OPPOSITE_SIDE = {"left": "right", "right": "left", "below": "above", "above": "below"}
+"""The side b is on when a is on `side` of it."""
+
 
 def layout_from_rects(spec: Spec, rects: Mapping[str, Rect], info: SolveInfo | None = None) -> Layout:
     """A Layout from plain rectangles: rounded rooms, portals centred on their shared walls."""

@@ -9,12 +9,10 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from layoutdsl.layout.geometry import OPPOSITE_SIDE, SIDES
 from layoutdsl.syntax.ast import Obstacle, Room, Spec
 
-SIDES = ("left", "right", "below", "above")
-"""Where the first room of a pair lies relative to the second (the four ω of (5.8))."""
-
-OPPOSITE_SIDE = {"left": "right", "right": "left", "below": "above", "above": "below"}
+__all__ = ["OPPOSITE_SIDE", "SIDES"]  # the four ω of (5.8), re-exported for the model's users
 
 BOUNDARY_SIDES = ("left", "right", "bottom", "top")
 """Which side of the boundary an onB room touches (the four β of (5.12))."""
