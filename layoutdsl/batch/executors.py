@@ -131,7 +131,9 @@ def run_dask(jobs: list[Job], workers: int, running: Running, address: str | Non
             try:
                 outcome = future.result()
             except distributed.KilledWorker as error:
-                outcome = Outcome(job.building, False, f"worker died while making it (KilledWorker: {error})")
+                # Dask's message goes on about logs; its first sentence says what happened
+                first = str(error).split(". ")[0]
+                outcome = Outcome(job.building, False, f"worker died while making it (KilledWorker: {first})")
             except Exception as error:  # raised inside the task: our bug or the engine's
                 outcome = Outcome(job.building, False, f"engine error: {type(error).__name__}: {error}")
             future.release()
