@@ -21,10 +21,15 @@ import signal
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from dataclasses import asdict, dataclass, field
 
 from layoutdsl.batch.jobs import Job
+
+_LIVE: set[subprocess.Popen] = set()
+"""Building processes now running from this process (to stop them on an interrupt)."""
+_LIVE_LOCK = threading.Lock()
 
 STDERR_TAIL = 400
 """Characters of a dead process's stderr kept in the reason (SCIP's abort message is there)."""
@@ -55,10 +60,12 @@ def run_isolated(job: Job) -> Outcome:
         package_root = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
         env["PYTHONPATH"] = os.pathsep.join(p for p in (package_root, env.get("PYTHONPATH")) if p)
         process = subprocess.Popen(
-            [sys.executable, "-m", "layoutdsl.batch.building", result_path],
+            [sys.executable, "-m", "layoutdsl.batch.building", result_path, str(os.getpid())],
             stdin=subprocess.PIPE, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-            env=env, start_new_session=True, preexec_fn=_die_with_parent,
+            env=env, start_new_session=True,
         )
+        with _LIVE_LOCK:
+            _LIVE.add(process)
         try:
             _, stderr = process.communicate(pickle.dumps(job), timeout=job.timeout)
         except subprocess.TimeoutExpired:
@@ -69,6 +76,9 @@ def run_isolated(job: Job) -> Outcome:
         except BaseException:
             _kill_group(process)
             raise
+        finally:
+            with _LIVE_LOCK:
+                _LIVE.discard(process)
         seconds = time.monotonic() - began
         if process.returncode != 0 or not os.path.exists(result_path):
             return Outcome(job.building, False, _death_reason(process.returncode, stderr), seconds)
@@ -81,16 +91,30 @@ def run_isolated(job: Job) -> Outcome:
     return outcome
 
 
-def _die_with_parent() -> None:
-    """In the child: be killed when the thread that started it dies (Linux), so a killed
-    driver leaves no building processes running on."""
+def _die_with_parent(parent: int) -> None:
+    """In the child: be killed when the process that started it dies (Linux), so a killed
+    driver or worker leaves no building processes running on.
+
+    Set here rather than in a Popen preexec_fn, which is unsafe with the pool's threads; the
+    parent check after it closes the window in which the parent died first.
+    """
     try:
         import ctypes
 
         PR_SET_PDEATHSIG = 1
         ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
     except (OSError, AttributeError):
-        pass
+        return
+    if os.getppid() != parent:
+        os._exit(1)
+
+
+def stop_all() -> None:
+    """Kill every building process this process started that still runs (on an interrupt)."""
+    with _LIVE_LOCK:
+        running = list(_LIVE)
+    for process in running:
+        _kill_group(process)
 
 
 def _kill_group(process: subprocess.Popen) -> None:
@@ -186,7 +210,10 @@ def _first_error(stage: str, diagnostics) -> str:
 
 
 def main(argv: list[str]) -> int:
-    """The child: job (pickle) on stdin -> Outcome (pickle) in the file named by argv[0]."""
+    """The child: job (pickle) on stdin -> Outcome (pickle) in the file named by argv[0];
+    argv[1] is the parent's process id."""
+    if len(argv) > 1:
+        _die_with_parent(int(argv[1]))
     job: Job = pickle.loads(sys.stdin.buffer.read())
     try:
         outcome = make_building(job)

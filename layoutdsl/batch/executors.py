@@ -22,7 +22,7 @@ import uuid
 from collections.abc import Iterator
 from concurrent.futures import FIRST_COMPLETED, ThreadPoolExecutor, wait
 
-from layoutdsl.batch.building import Outcome, run_isolated
+from layoutdsl.batch.building import Outcome, run_isolated, stop_all
 from layoutdsl.batch.jobs import Job
 
 ENGINES = ("pool", "dask")
@@ -76,7 +76,9 @@ def run_pool(jobs: list[Job], workers: int, running: Running) -> Iterator[tuple[
                 job = pending.pop(future)
                 yield job, future.result()
     finally:
+        # on an interrupt, buildings still running are abandoned, not waited for
         pool.shutdown(wait=False, cancel_futures=True)
+        stop_all()
 
 
 def _import_distributed():
