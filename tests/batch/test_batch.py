@@ -211,3 +211,21 @@ def test_dask_engine_without_the_extra_is_a_usage_error(monkeypatch, capsys):
     monkeypatch.setitem(sys.modules, "distributed", None)  # as if not installed
     assert main(["batch", str(TINY), "-o", "unused", "--engine", "dask"]) == 2
     assert "layoutdsl[cluster]" in capsys.readouterr().err
+
+
+def test_cli_records_a_plan_that_does_not_import_and_exits_3(tmp_path, capsys):
+    from layoutdsl.cli import main
+
+    broken = tmp_path / "broken.xml"
+    broken.write_text("<building><floor><spaces><space id='a'>")  # cut short
+    outdir = tmp_path / "out"
+    code = main(["batch", str(broken), str(TINY), "-o", str(outdir), "--node-limit", "5",
+                 "--time-limit", "30", "--emit", "xml", "-q"])
+    assert code == 3
+    out = capsys.readouterr().out
+    assert "2 buildings: 0 already done, 1 made, 1 failed" in out
+    records = {r["building"]: r for r in manifest_lines(outdir)}
+    assert records["broken-v1"]["status"] == "failed"
+    assert records["broken-v1"]["reason"].startswith("import: E4")
+    assert records["broken-v1"]["kind"] == "plan"
+    check_done(outdir, records["tiny-v1"])
