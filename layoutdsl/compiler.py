@@ -178,7 +178,12 @@ def compile_spec(
             # the alternative, finds no layout from about 20 rooms up (solver scouting), so
             # the time left is better spent decomposing.
             left = replace(options, time_limit=max(0.1, deadline - time.monotonic()))
-            return cycles.compile_with_cycles(spec, left, progress=progress)
+            result = cycles.compile_with_cycles(spec, left, progress=progress)
+            if result.layout is None:
+                # the decomposition ran on what the construction left; the limit was the user's
+                status = result.outcome.status if result.outcome is not None else "time_limit"
+                result = replace(result, diagnostics=explain.restate_limit(result.diagnostics, spec, options, status))
+            return result
     if rects_start is not None:
         # a start that fails verification is never handed on as an answer
         start_layout = layout_from_rects(spec, rects_start)

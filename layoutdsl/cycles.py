@@ -21,6 +21,7 @@ from dataclasses import replace
 
 import networkx as nx
 
+from layoutdsl import explain
 from layoutdsl.ast import Cluster, ClusterMember, Spec
 
 DEFAULT_SUB_SHARE = 0.4
@@ -155,6 +156,9 @@ def compile_with_cycles(
             return _as_cycles(result)
     if result is None:
         result = compile_spec(current, replace(auto, time_limit=remaining()), progress=progress)
+    if result.layout is None:
+        status = result.outcome.status if result.outcome is not None else "time_limit"
+        result = replace(result, diagnostics=explain.restate_limit(result.diagnostics, spec, options, status))
     return _as_cycles(result)
 
 

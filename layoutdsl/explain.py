@@ -101,6 +101,15 @@ def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagno
     )
 
 
+def restate_limit(diagnostics: list[Diagnostic], spec: Spec, options, status: str = "time_limit") -> list[Diagnostic]:
+    """The diagnostics with every E902 saying `options`' limit.
+
+    Strategies that split the time (cycle decomposition, the fallback to it) compile parts of
+    the run under a share of the limit; the user asked for the whole one and must read that.
+    """
+    return [no_layout_in_time(spec, options, status) if d.code == E902 else d for d in diagnostics]
+
+
 def verification_failed(spec: Spec, violations) -> Diagnostic:
     """E903: the solved layout broke hard constraints; lists the violations."""
     notes = tuple(v.message for v in violations[:20])

@@ -152,10 +152,12 @@ def compile_variants(
     formats=None,
     robot_room: str | None = None,
     workers: int = MAX_WORKERS,
+    world_options: dict | None = None,
 ) -> VariantsResult:
     """Compile N variants of the spec; write NAME-k.* (and NAME-k.layout.json) to `outdir`.
 
     Each variant gets options.time_limit seconds; up to `workers` run at once.
+    `world_options` (wall_height, robot) go to the 3D emitters.
     """
     from layoutdsl.solve import SolveOptions
 
@@ -188,13 +190,13 @@ def compile_variants(
     positions = [point for _, point in results]
     paths: list[Path] = []
     if outdir is not None:
-        paths = _write(spec, layouts, Path(outdir), formats, robot_room)
+        paths = _write(spec, layouts, Path(outdir), formats, robot_room, world_options or {})
     found = [layout for layout in layouts if layout is not None]
     return VariantsResult(layouts, diversity(found), paths, positions)
 
 
 def _write(
-    spec: Spec, layouts: list[Layout | None], outdir: Path, formats, robot_room
+    spec: Spec, layouts: list[Layout | None], outdir: Path, formats, robot_room, world_options: dict
 ) -> list[Path]:
     """NAME-k.layout.json plus the emitters' files for each variant that has a layout."""
     from layoutdsl.atomic import write_text_atomic
@@ -208,5 +210,5 @@ def _write(
         stem = f"{spec.name}-{index}"
         paths.append(write_text_atomic(outdir / f"{stem}.layout.json", layout.to_json()))
         paths += write_outputs(layout, outdir, stem, formats or DEFAULT_FORMATS,
-                               robot_room=robot_room)
+                               robot_room=robot_room, **world_options)
     return paths

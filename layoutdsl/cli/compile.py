@@ -48,8 +48,14 @@ def add_parser(subparsers) -> None:
     parser.add_argument("--solution-limit", type=positive_int, metavar="N",
                         help="stop after N improving solutions: a deterministic stopping rule")
     parser.add_argument("--emit", default="xml,png,world,map", metavar="FORMATS",
-                        help="comma-separated output formats: xml, png, world, map (default all)")
+                        help="comma-separated output formats: xml, png, world, map (the default "
+                        "set), and the 3D worlds mjcf (MuJoCo), sdf (Gazebo), gltf (mesh; needs "
+                        "pip install 'layoutdsl[sim]')")
     parser.add_argument("--robot-room", metavar="ID", help="room the simulated robot starts in")
+    parser.add_argument("--wall-height", type=positive_float, default=2.5, metavar="M",
+                        help="wall height of the 3D worlds in metres (default 2.5)")
+    parser.add_argument("--no-robot", dest="robot", action="store_false",
+                        help="leave the wheeled robot and its rangefinders out of the MuJoCo scene")
     parser.add_argument("--variants", type=positive_int, metavar="N",
                         help="write N different verified layouts, NAME-1.* ... NAME-N.*")
     parser.add_argument("--strategy", choices=STRATEGIES, default="auto",
@@ -108,6 +114,10 @@ def run(args: argparse.Namespace) -> int:
     formats = _formats(args.emit)
     if isinstance(formats, str):
         return _error(formats)
+    from layoutdsl.emit import MAX_WALL_HEIGHT
+
+    if args.wall_height > MAX_WALL_HEIGHT:
+        return _error(f"--wall-height {args.wall_height:g} is taller than {MAX_WALL_HEIGHT:g} m")
     if args.robot_room is not None and spec.room(args.robot_room) is None:
         known = ", ".join(spec.room_ids[:10])
         return _error(f"--robot-room `{args.robot_room}` is not a room of the spec (rooms: {known})")
@@ -141,7 +151,8 @@ def run(args: argparse.Namespace) -> int:
     if result.layout is None:
         return exitcodes.NO_LAYOUT
     try:
-        written = write_layout_files(result.layout, outdir, spec.name, formats, robot_room=args.robot_room)
+        written = write_layout_files(result.layout, outdir, spec.name, formats, robot_room=args.robot_room,
+                                     wall_height=args.wall_height, robot=args.robot)
     except OSError as error:
         return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
     except ValueError as error:  # the emitters refuse an option (EmitError)
@@ -162,7 +173,8 @@ def _formats(text: str) -> tuple[str, ...] | str:
         return str(error)
 
 
-def write_layout_files(layout, outdir: Path, stem: str, formats, *, robot_room: str | None = None) -> list[Path]:
+def write_layout_files(layout, outdir: Path, stem: str, formats, *, robot_room: str | None = None,
+                       **world_options) -> list[Path]:
     """NAME.layout.json plus the emitters' files for `formats`, all or nothing."""
     files: dict[str, bytes] = {f"{stem}.layout.json": layout.to_json().encode("utf-8")}
     try:
@@ -173,7 +185,7 @@ def write_layout_files(layout, outdir: Path, stem: str, formats, *, robot_room: 
         outdir.mkdir(parents=True, exist_ok=True)
         return write_files_atomic({outdir / name: data for name, data in files.items()})
     if formats:
-        files.update(render_outputs(layout, stem, formats, robot_room=robot_room))
+        files.update(render_outputs(layout, stem, formats, robot_room=robot_room, **world_options))
     return write_rendered(files, outdir)
 
 
@@ -235,7 +247,8 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
         return _error("--variants is not available in this build (layoutdsl.variants is missing)")
     try:
         result = compile_variants(spec, args.variants, seed=options.seed, options=options,
-                                  outdir=outdir, formats=formats, robot_room=args.robot_room)
+                                  outdir=outdir, formats=formats, robot_room=args.robot_room,
+                                  world_options={"wall_height": args.wall_height, "robot": args.robot})
     except OSError as error:
         return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
     layouts = list(result.layouts)

@@ -115,6 +115,10 @@ def run(args: argparse.Namespace) -> int:
     except (ValueError, MemoryError) as error:
         print(f"layoutdsl evaluate: cannot evaluate: {error}", file=sys.stderr)
         return exitcodes.USAGE
+    from layoutdsl.evaluate.report import map_check_warnings
+
+    for line in map_check_warnings(report):
+        print(f"warning: {line}", file=sys.stderr)
     try:
         written = write_report(report, args.output)
     except OSError as error:

@@ -94,12 +94,14 @@ def layout_centres(layout) -> dict[str, tuple[float, float]]:
 
 
 def building_centres(building) -> dict[str, tuple[float, float]]:
-    """Room centres of a building XML plan under the spec's room ids (type and order, thesis §5.7).
+    """Room centres of a building XML plan under the report's room ids (thesis §5.7).
 
     The centre of a space is the centre of its bounding box: the rectangle the importer makes
     of it (and writes as its hint), so a plan redrawn from its hints scores about 0.
     """
-    ids = building.spec_room_ids()
+    from layoutdsl.evaluate.topology import room_ids
+
+    ids = room_ids(building)
     return {
         ids[space.id]: ((space.bbox.min_x + space.bbox.max_x) / 2, (space.bbox.min_y + space.bbox.max_y) / 2)
         for space in building.spaces

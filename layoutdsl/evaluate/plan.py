@@ -6,7 +6,7 @@ The report (report.py) then compares the generated plans' measures with the orig
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import networkx as nx
 import numpy as np
@@ -15,7 +15,9 @@ from layoutdsl.building import Building
 from layoutdsl.evaluate.explore import ExploreSettings, ExplorationResult, explore
 from layoutdsl.evaluate.grid import coarsen, inflate, nearest_cell, room_cells
 from layoutdsl.evaluate.metrics import PlanAreas, plan_areas, room_sizes
+from layoutdsl.evaluate.difference import building_centres
 from layoutdsl.evaluate.paths import DistanceGrid, shortest_path
+from layoutdsl.evaluate.portals import MapCheck, realise_portal_graph
 from layoutdsl.evaluate.topology import room_graph, room_ids, sorted_rooms
 from layoutdsl.raster import rasterize_building
 
@@ -73,6 +75,10 @@ class PlanMeasures:
     free_area_m2: float = 0.0
     occupied_preview: np.ndarray | None = None
     """The exploration grid (for plots), row 0 at the top."""
+    map_check: MapCheck | None = None
+    """Whether the rasterized map joins exactly the rooms the portals join (and what was opened)."""
+    centres: dict[str, tuple[float, float]] = field(default_factory=dict)
+    """Room centres under report ids, for the arrangement difference (evaluate.difference)."""
 
 
 def _anchor(room: str, index: int, rooms, traversable: np.ndarray, resolution: float) -> RoomAnchor | None:
@@ -90,9 +96,15 @@ def measure_plan(building: Building, options: EvaluateOptions = EvaluateOptions(
     ids = room_ids(building)
     res = options.resolution_m
     grid = rasterize_building(building, res)
-    traversable = ~inflate(grid.occupied, options.robot_radius_m, res)
     rooms = room_cells(building, grid, ids)
     graph = room_graph(building)
+    # every measure below runs on a map whose free space joins exactly the portal graph, as
+    # far as it can be repaired; what cannot is reported (evaluate.portals)
+    occupied, map_check = realise_portal_graph(
+        grid.occupied, rooms.labels, rooms.ids, {tuple(sorted(e)) for e in graph.edges}, res,
+        building.real_distance_m)
+    grid = replace(grid, occupied=occupied)
+    traversable = ~inflate(grid.occupied, options.robot_radius_m, res)
     entrances = tuple(sorted_rooms(room for room in rooms.ids if graph.nodes[room]["rtype"] == "E"))
     anchors: dict[str, RoomAnchor] = {}
     for room in entrances:
@@ -151,4 +163,6 @@ def measure_plan(building: Building, options: EvaluateOptions = EvaluateOptions(
         grid_shape=grid.shape,
         free_area_m2=float((~grid.occupied).sum()) * res * res,
         occupied_preview=occupied,
+        map_check=map_check,
+        centres=building_centres(building),
     )

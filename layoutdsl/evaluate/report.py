@@ -16,6 +16,7 @@ import numpy as np
 
 from layoutdsl.atomic import write_files_atomic
 from layoutdsl.building import Building
+from layoutdsl.evaluate.difference import difference
 from layoutdsl.evaluate.metrics import size_deviation
 from layoutdsl.evaluate.plan import EvaluateOptions, PlanMeasures, measure_plan
 from layoutdsl.evaluate.topology import compare_topology
@@ -87,6 +88,21 @@ def _plan_dict(m: PlanMeasures, path: str) -> dict:
         "paths_m": {_pair(a, b): v for (a, b), v in m.path_lengths.items()},
         "grid_paths_m": {_pair(a, b): v for (a, b), v in m.grid_path_lengths.items()},
         "exploration": _exploration_dict(m),
+        "map_check": _map_check_dict(m),
+    }
+
+
+def _map_check_dict(m: PlanMeasures) -> dict | None:
+    check = m.map_check
+    if check is None:
+        return None
+    return {
+        "realises_portal_graph": check.realised,
+        "realised_as_rasterized": check.realised_before,
+        "opened_portals": [list(p) for p in check.opened],
+        "sealed_joins": [list(p) for p in check.closed],
+        "closed_portals": [list(p) for p in check.still_missing],
+        "joins_without_portal": [list(p) for p in check.extra],
     }
 
 
@@ -109,6 +125,7 @@ def compare_plans(original: PlanMeasures, generated: list[PlanMeasures], files: 
             "changed_portals": [list(x) for x in topo.changed_portals],
         }
         entry["deviation"] = {
+            "arrangement_difference": difference(original.centres, m.centres),
             "room_area": _rel(m.areas.room_area_m2, original.areas.room_area_m2),
             "bbox_area": _rel(m.areas.bbox_area_m2, original.areas.bbox_area_m2),
             "room_size_mean": sizes.mean,
@@ -162,9 +179,26 @@ def compare_plans(original: PlanMeasures, generated: list[PlanMeasures], files: 
     }
 
 
+def distinct_names(files: list[str]) -> list[str]:
+    """A name per file: its stem, with as many parent folders as it takes to tell apart
+    different files of the same stem (the same file given twice keeps one name).
+
+    Variants of several runs are often called alike (`run1/plan-0.xml`, `run2/plan-0.xml`);
+    the report's columns and plots must not merge them.
+    """
+    parts = [Path(f).resolve().with_suffix("").parts for f in files]
+    names = [p[-1] for p in parts]
+    for depth in range(2, max(len(p) for p in parts) + 1):
+        clashing = {n for n in names if len({q for q, m in zip(parts, names) if m == n}) > 1}
+        if not clashing:
+            break
+        names = ["/".join(p[-depth:]) if n in clashing else n for p, n in zip(parts, names)]
+    return names
+
+
 def evaluate(original: Building, generated: list[Building], files: list[str], options: EvaluateOptions = EvaluateOptions()) -> dict:
     """Measure the original and every generated plan and compare them (report.json content)."""
-    names = [Path(f).stem for f in files]
+    names = distinct_names(files)
     measured = [measure_plan(b, options, name) for b, name in zip([original, *generated], names)]
     report = compare_plans(measured[0], measured[1:], files, options)
     return report
@@ -189,6 +223,47 @@ def _abs_pct(value) -> str:
     return "–" if value is None else f"{value * 100:.1f} %"
 
 
+def _map_check_lines(plans: list[dict], original: dict) -> list[str]:
+    """The 'Map check' section: which maps join exactly the rooms their portals join."""
+    out = ["", "## Map check", "",
+           "Every measure runs on the occupancy map. Before measuring, each map is checked against its "
+           "portal graph (flood fill: rooms joined by a portal must be connected, and no others); portals "
+           "the rasterization left closed are opened with a door-wide cut, and rooms joined without a portal "
+           "are parted by a one-cell wall where that parts nothing else. Repairs, and what could not be fixed:", ""]
+    for g in plans:
+        check = g.get("map_check")
+        if check is None:
+            continue
+        label = g["name"] + (" (original)" if g is original else "")
+        for a, b in check["opened_portals"]:
+            out.append(f"- {label}: opened the portal between `{a}` and `{b}` (closed in the rasterized map)")
+        for a, b in check["sealed_joins"]:
+            out.append(f"- {label}: walled `{a}` off from `{b}` (joined in the rasterized map without a portal)")
+        for a, b in check["closed_portals"]:
+            out.append(f"- {label}: **`{a}` and `{b}` share a portal but are not joined in the map**")
+        for a, b in check["joins_without_portal"]:
+            out.append(f"- {label}: `{a}` and `{b}` are joined in the map without a portal")
+    if out[-1] == "":
+        out.append("Every map realises its portal graph.")
+    return out
+
+
+def map_check_warnings(report: dict) -> list[str]:
+    """One line per map problem left after the repair, naming the plan and the rooms."""
+    lines = []
+    for g in [report["original"], *report["generated"]]:
+        check = g.get("map_check") or {}
+        for a, b in check.get("closed_portals", []):
+            lines.append(f"{g['name']}: rooms `{a}` and `{b}` share a portal but are not joined in the map")
+        for a, b in check.get("joins_without_portal", []):
+            lines.append(f"{g['name']}: rooms `{a}` and `{b}` are joined in the map without a portal")
+        for a, b in check.get("opened_portals", []):
+            lines.append(f"{g['name']}: opened the portal between `{a}` and `{b}`, closed in the rasterized map")
+        for a, b in check.get("sealed_joins", []):
+            lines.append(f"{g['name']}: walled `{a}` off from `{b}`, joined in the rasterized map without a portal")
+    return lines
+
+
 def render_markdown(report: dict) -> str:
     """report.md: the tables a person reads."""
     o = report["original"]
@@ -200,11 +275,18 @@ def render_markdown(report: dict) -> str:
         f"{st['robot_radius_m']} m, map resolution {st['resolution_m']} m, exploration grid "
         f"{st['explore_resolution_m']} m, seed {st['seed']}."
     )
-    out += ["", "## Topology", "", "| plan | rooms | adjacencies | isomorphic | difference |", "|---|---|---|---|---|"]
-    out.append(f"| {o['name']} (original) | {o['rooms']} | {o['adjacencies']} | – | – |")
+    out += ["", "## Topology and arrangement", "",
+            "| plan | rooms | adjacencies | isomorphic | topology difference | arrangement difference |",
+            "|---|---|---|---|---|---|"]
+    out.append(f"| {o['name']} (original) | {o['rooms']} | {o['adjacencies']} | – | – | – |")
     for g in gens:
         t = g["topology"]
-        out.append(f"| {g['name']} | {g['rooms']} | {g['adjacencies']} | {'yes' if t['isomorphic'] else '**no**'} | {t['summary']} |")
+        out.append(f"| {g['name']} | {g['rooms']} | {g['adjacencies']} | {'yes' if t['isomorphic'] else '**no**'} | "
+                   f"{t['summary']} | {_fmt(g['deviation']['arrangement_difference'])} |")
+    out += ["", "Arrangement difference: the share of room pairs whose relative position (left, right, above, "
+            "below of each other's centres) differs from the original, under the best of the 8 rotations and "
+            "mirrors; 0 is the original arrangement redrawn."]
+    out += _map_check_lines([o, *gens], o)
     out += ["", "## Areas and room sizes", ""]
     out += [
         "| plan | room area m² | Δ | bounding box m² | Δ | room size dev. mean | max (room) |",

@@ -179,3 +179,16 @@ SELF_PORTAL = register(
     "A room cannot be adjacent to itself; the portal is a drawing mistake in the plan.",
     "<target><id>A</id><id>A</id></target>   <!-- warning: ignored -->",
 )
+
+SKIPPED_EMPTY_SPACE = register(
+    "W425",
+    Severity.WARNING,
+    "space without area or portal skipped",
+    "Warns about a space whose `<bounding_polygon>` encloses no area and that no portal "
+    "joins to any other space; it is left out of the spec. A space without area that a "
+    "portal does join is still an error (E405).",
+    "Such a space is a drawing artefact (a stray label or a collapsed outline, seen in real "
+    "plans): it has no size and no place in the room graph, so skipping it changes neither "
+    "the rooms nor the topology, while refusing it would fail the whole import.",
+    "<bounding_polygon><point x=\"5\" y=\"5\"/></bounding_polygon>, no <portals>   <!-- warning: skipped -->",
+)

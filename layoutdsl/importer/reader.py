@@ -106,6 +106,8 @@ class _Reader:
     positions: dict[int, tuple[int, int]]
     diagnostics: list[Diagnostic] = field(default_factory=list)
     space_ids: dict[str, Element] = field(default_factory=dict)
+    empty_spaces: dict[str, tuple[Element, int]] = field(default_factory=dict)
+    """Spaces whose polygon encloses no area and that have no portal: id -> (polygon, points)."""
     lines: list[str] = field(default_factory=list)
 
     def __post_init__(self) -> None:
@@ -221,6 +223,7 @@ class _Reader:
         spaces = self.spaces(root)
         if spaces is not None:
             self.check_targets(spaces, self.space_ids)
+            self.check_empty_spaces(spaces)
         if scale is None or spaces is None or any(d.is_error for d in self.diagnostics):
             return None
         name = (root.findtext("name") or "").strip() or default_name
@@ -328,10 +331,10 @@ class _Reader:
             parsed = self.space(element, space_id)
             if parsed is not None:
                 result.append(parsed)
-        if not seen:
+        if not seen or set(seen) == set(self.empty_spaces):
             self.report(
                 codes.NO_SPACES,
-                "the plan has no spaces",
+                "the plan has no spaces" if not seen else "the plan has no space with an area",
                 self.span(spaces_el),
                 label="expected `<space id=...>` elements here",
             )
@@ -393,6 +396,11 @@ class _Reader:
             return None
         distinct = {(p.x, p.y) for p in points}
         if len(distinct) < 3 or polygon_area(points) <= 0:
+            if not element.findall("portals/portal"):
+                # a drawing artefact unless another space's portal leads here: decided in
+                # building(), once every portal has been read
+                self.empty_spaces[space_id] = (polygon_el, len(distinct))
+                return None
             self.report(
                 codes.DEGENERATE_POLYGON,
                 f"the polygon of space `{space_id}` encloses no area",
@@ -477,6 +485,31 @@ class _Reader:
             portal = BuildingPortal(segment_id, kind, (targets[0], targets[1]), segment)
             portals.append((portal, (portal_el, ids_el)))
         return portals if ok else None
+
+    def check_empty_spaces(self, spaces) -> None:
+        """Spaces without area: skipped with W425, or E405 when a portal leads to them."""
+        targeted = {
+            (id_el.text or "").strip()
+            for _, portal_elements in spaces
+            for _, ids_el in portal_elements
+            for id_el in ids_el
+        }
+        for space_id, (polygon_el, distinct) in self.empty_spaces.items():
+            if space_id in targeted:
+                self.report(
+                    codes.DEGENERATE_POLYGON,
+                    f"the polygon of space `{space_id}` encloses no area",
+                    self.span(polygon_el),
+                    label=f"{distinct} distinct point(s), and a portal leads here",
+                    help="a room needs at least three points not on one line",
+                )
+            else:
+                self.warn(
+                    codes.SKIPPED_EMPTY_SPACE,
+                    f"space `{space_id}` encloses no area and has no portal; skipped",
+                    self.span(polygon_el),
+                    label=f"{distinct} distinct point(s)",
+                )
 
     def check_targets(self, spaces, known) -> None:
         for space, portal_elements in spaces:

@@ -95,3 +95,13 @@ def test_report_files_are_written_and_identical_for_the_same_seed(tmp_path, self
         assert a.read_bytes() == b.read_bytes(), a.name
     assert json.loads((tmp_path / "a" / "report.json").read_text())["original"]["rooms"] == 3
     assert not [p for p in (tmp_path / "a").iterdir() if p.name.startswith(".")]
+
+
+def test_plans_of_the_same_file_name_from_different_folders_keep_distinct_names(tmp_path):
+    from layoutdsl.evaluate.report import distinct_names
+
+    files = [str(tmp_path / "orig" / "plan.xml"), str(tmp_path / "run1" / "plan-0.xml"),
+             str(tmp_path / "run2" / "plan-0.xml"), str(tmp_path / "run2" / "plan-1.xml")]
+    assert distinct_names(files) == ["plan", "run1/plan-0", "run2/plan-0", "plan-1"]
+    # the same file twice is the same plan: one name
+    assert distinct_names([files[0], files[0]]) == ["plan", "plan"]

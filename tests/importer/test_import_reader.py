@@ -110,9 +110,37 @@ def test_space_without_polygon_is_an_error():
     assert [(d.code, d.message) for d in diagnostics] == [("E405", "space `a` has no `<bounding_polygon>`")]
 
 
-def test_zero_area_polygon_is_an_error():
-    xml = plan_xml([PlanSpace("a", "R", "ROOM", [(0, 0), (100, 0), (200, 0), (0, 0)])])
-    assert _codes(read_building("plan.xml", text=xml)[1]) == ["E405"]
+FLAT = [(0, 0), (100, 0), (200, 0), (0, 0)]
+"""A polygon on one line: no area."""
+
+
+def test_zero_area_polygon_a_portal_leads_to_is_an_error():
+    xml = plan_xml([
+        PlanSpace("a", "R", "ROOM", FLAT),
+        PlanSpace("b", "C", "CORRIDOR", rect(0, 100, 400, 200), portals=[("d1", "a", "b", "EXPLICIT")]),
+    ])
+    building, diagnostics = read_building("plan.xml", text=xml)
+    assert building is None
+    empty = [d for d in diagnostics if d.code == "E405"]
+    assert len(empty) == 1 and "portal leads here" in empty[0].label
+
+
+def test_zero_area_space_without_portal_is_skipped_with_a_warning():
+    xml = plan_xml([
+        PlanSpace("artefact", "R", "ROOM", FLAT),
+        PlanSpace("b", "C", "CORRIDOR", rect(0, 100, 400, 200)),
+    ])
+    building, diagnostics = read_building("plan.xml", text=xml)
+    assert _codes(diagnostics) == ["W425"]
+    assert building is not None and [s.id for s in building.spaces] == ["b"]
+
+
+def test_a_plan_of_nothing_but_empty_spaces_has_no_spaces():
+    xml = plan_xml([PlanSpace("a", "R", "ROOM", FLAT)])
+    building, diagnostics = read_building("plan.xml", text=xml)
+    assert building is None
+    assert _codes(diagnostics) == ["E410"]
+    assert "no space with an area" in diagnostics[0].message
 
 
 def test_non_numeric_coordinate_points_at_the_attribute():

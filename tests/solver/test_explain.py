@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 
 from layoutdsl.api import read_source, lint_source
@@ -62,3 +63,37 @@ def test_on_boundary_flag_can_be_part_of_a_conflict():
     groups = conflicting_groups(s, deadline=time.monotonic() + 20)
     assert groups is not None
     assert {(g.kind, g.key) for g in groups} == {("onB", "A"), ("position", 0), ("size", "A")}
+
+
+def test_e902_after_the_cycle_fallback_states_the_users_limit(monkeypatch):
+    """The fallback decomposes in the time the construction left; E902 must name the whole limit."""
+    from layoutdsl import compiler, cycles, explain
+
+    triangle = spec(
+        "triangle", [room(n, (2, 3, 2.5), (2, 3, 2.5)) for n in "ABC"], 12, 12,
+        adjacencies=[Adjacency("A", "B", 0.9, "e"), Adjacency("B", "C", 0.9, "e"), Adjacency("A", "C", 0.9, "e")])
+    seen = []
+
+    def decompose(cycle_spec, options, progress=None):
+        seen.append(options.time_limit)
+        wrong = explain.no_layout_in_time(cycle_spec, options)
+        return compiler.CompileResult(None, [wrong], "no_layout")
+
+    monkeypatch.setattr(cycles, "compile_with_cycles", decompose)
+    options = replace(SolveOptions(), time_limit=60.0, quiet=True)
+    result = compiler.compile_spec(triangle, options, start_provider=lambda _spec, _share: None)
+    assert seen and seen[0] < 60.0
+    assert [d.code for d in result.diagnostics] == ["E902"]
+    assert "time limit of 60 s" in result.diagnostics[0].message
+
+
+def test_restate_limit_rewrites_only_e902():
+    from layoutdsl import explain
+
+    one = spec("one", [room("A", (2, 3, 2.5), (2, 3, 2.5))], 5, 5)
+    short = explain.no_layout_in_time(one, SolveOptions(time_limit=1.60203))
+    other = explain.infeasible_without_explanation(one)
+    restated = explain.restate_limit([short, other], one, SolveOptions(time_limit=60.0))
+    assert "1.60203" in short.message
+    assert "time limit of 60 s" in restated[0].message
+    assert restated[1] == other

@@ -43,5 +43,5 @@ def test_every_import_code_has_a_snapshot():
         value for name, value in vars(import_codes).items() if name.isupper() and value in CODES
     }
     covered = {case.name.split("_", 1)[0] for case in CASES}
-    assert len(importer_codes) == 16
+    assert len(importer_codes) == 17
     assert sorted(importer_codes - covered) == []
