@@ -71,7 +71,7 @@ def add_parser(subparsers) -> None:
     parser.add_argument("--timeout", type=positive_float, metavar="S",
                         help="kill a building's process after S seconds (default: 2 x time limit + 60)")
     parser.add_argument("--emit", default="xml,png,world,map", metavar="FORMATS",
-                        help="comma-separated output formats: xml, png, world, map (default all)")
+                        help="comma-separated output formats, as for compile (default xml,png,world,map)")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     parser.set_defaults(run=run)
 
