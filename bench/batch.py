@@ -188,7 +188,7 @@ def main(argv: list[str] | None = None) -> int:
         # a building is made twice when anything follows a done record of it
         made_twice = sorted(b for b, s in statuses.items() if "done" in s[:-1])
         say(f"SIGKILL of the driver after {logged} of {total} logged; re-run: "
-            f"{stdout.splitlines()[0] if stdout else '?'}")
+            f"{stdout.splitlines()[0].split(': ', 1)[-1] if stdout else '?'}")
         say(f"  manifest lines {len(final)}, distinct buildings {len(set(names))}, expected {total}; "
             f"done buildings made twice: {len(made_twice)}")
 
