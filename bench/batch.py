@@ -205,6 +205,17 @@ def main(argv: list[str] | None = None) -> int:
         plan_count = len({r["building"].rsplit("-v", 1)[0] for r in chosen})
         say(f"{f'{low}-{high}':<10} {plan_count:5d} {len(chosen):6d} {statistics.mean(seconds):8.1f} "
             f"{spread:8.1f} {min(seconds):7.1f} {max(seconds):7.1f}")
+    # variants only help a dataset when they differ: count distinct room geometries per plan
+    geometries: dict[str, set[str]] = {}
+    outdir = runs["pool, 1 worker"][0]
+    for r in records.values():
+        if r["status"] == "done":
+            layout_file = next(name for name in r["files"] if name.endswith(".layout.json"))
+            rooms_only = json.dumps(json.loads((outdir / layout_file).read_text())["rooms"], sort_keys=True)
+            geometries.setdefault(r["building"].rsplit("-v", 1)[0], set()).add(rooms_only)
+    alike = sorted(plan for plan, shapes in geometries.items() if len(shapes) < args.variants)
+    say(f"plans whose {args.variants} variants are not all different: {len(alike)} of {len(geometries)}"
+        + (f" ({', '.join(alike)})" if alike else ""))
     stops = {}
     for r in records.values():
         stops[r["solve_status"]] = stops.get(r["solve_status"], 0) + 1
