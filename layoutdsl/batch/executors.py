@@ -102,9 +102,7 @@ def run_dask(jobs: list[Job], workers: int, running: Running, address: str | Non
     cluster = None
     try:
         if address is None:
-            with dask.config.set({"distributed.scheduler.allowed-failures": LOCAL_ALLOWED_FAILURES,
-                                  # the worker only waits for the building's own process
-                                  "distributed.worker.daemon": False}):
+            with dask.config.set({"distributed.scheduler.allowed-failures": LOCAL_ALLOWED_FAILURES}):
                 cluster = distributed.LocalCluster(
                     n_workers=workers, threads_per_worker=1, processes=True,
                     dashboard_address=None, host="127.0.0.1", silence_logs=50)
