@@ -67,7 +67,9 @@ def run_batch(
         order = [job.building for job in jobs]
         pending = [job for job in jobs if not manifest.is_done(outdir, records.get(job.building), job.fingerprint)]
         summary = BatchSummary(total=len(jobs), skipped=len(jobs) - len(pending))
-        manifest.write_manifest(outdir, order, records)
+        if records:
+            # consolidate what earlier runs logged, before anything else can fail
+            manifest.write_manifest(outdir, order, records)
         if progress:
             progress("start", len(pending))
         if pending:
