@@ -9,6 +9,7 @@ any moment therefore leaves every building either listed with all its files, or 
 from __future__ import annotations
 
 import fcntl
+import hashlib
 import os
 import time
 from collections.abc import Callable
@@ -114,8 +115,6 @@ def _commit(outdir: Path, job: Job, outcome: Outcome) -> dict:
         except OSError as error:
             record.update(status="failed", reason=f"cannot write `{folder}`: {error.strerror or error}")
         else:
-            import hashlib
-
             names = [f"{job.building}/{name}" for name in outcome.files]
             record["files"] = names
             record["sha256"] = {name: hashlib.sha256(data).hexdigest()
