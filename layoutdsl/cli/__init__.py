@@ -22,6 +22,7 @@ COMMANDS = {
     "fmt": ("fmt", "print or rewrite a spec in canonical form"),
     "import": ("import_xml", "convert a building XML plan into a spec"),
     "evaluate": ("evaluate", "compare generated plans with their original"),
+    "batch": ("batch", "make many verified buildings from specs and plans, resumably"),
 }
 
 

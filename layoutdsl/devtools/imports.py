@@ -37,6 +37,7 @@ LAYERS: tuple[str, ...] = (
     "compile",
     "evaluate",
     "api",
+    "batch",
     "cli",
     "__main__",
     ROOT_PACKAGE,
@@ -116,8 +117,12 @@ def layer_of(module: str) -> str:
 
 
 def _rank(module: str) -> int:
-    layer = layer_of(module)
+    return _layer_rank(layer_of(module), module)
+
+
+def _layer_rank(layer: str, module: str | None = None) -> int:
     if layer not in LAYERS:
+        module = module or f"{ROOT_PACKAGE}.{layer}"
         raise SystemExit(f"{module}: package `{layer}` has no place in LAYERS; add it where it belongs")
     return LAYERS.index(layer)
 
@@ -189,7 +194,7 @@ def main(argv: list[str] | None = None) -> int:
     graph = import_graph()
     if args.packages:
         folded = fold_to_packages(graph)
-        print(format_graph(folded, sorted(folded, key=LAYERS.index)))
+        print(format_graph(folded, sorted(folded, key=_layer_rank)))
     else:
         print(format_graph(graph, sorted(graph, key=lambda m: (_rank(m), m))))
     problems = violations(graph)
