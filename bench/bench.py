@@ -67,7 +67,7 @@ def size_deviation(spec, layout) -> float:
 
 def _solve(path: str, strategy: str, time_limit: float, seed: int) -> dict:
     """Import and compile one plan with one strategy: plain numbers for the table."""
-    from layoutdsl.compiler import compile_spec
+    from layoutdsl.compile import compile_spec
     from layoutdsl.solve import SolveOptions
 
     spec, original = _load(Path(path))
@@ -119,7 +119,7 @@ def solve_isolated(path: Path, strategy: str, time_limit: float, seed: int) -> d
 
 def plan_facts(path: Path) -> dict:
     """Rooms, edges and independent cycles of a plan's room graph."""
-    from layoutdsl.cycles import cycle_rank
+    from layoutdsl.compile.cycles import cycle_rank
 
     spec, original = _load(path)
     return {
@@ -257,7 +257,7 @@ def main(argv: list[str] | None = None) -> int:
         text = "\n".join(lines) + "\n"
         print("\n".join(summary(rows, args.time_limit)))
     if args.out:
-        from layoutdsl.atomic import write_text_atomic
+        from layoutdsl.emit.atomic import write_text_atomic
 
         write_text_atomic(args.out, text)
     return 0

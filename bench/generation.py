@@ -68,7 +68,7 @@ def _original(path: Path):
 
 def _layout_row(spec, layout, area, original_fill, centres) -> dict:
     from layoutdsl.evaluate.difference import difference, layout_centres
-    from layoutdsl.verify import verify
+    from layoutdsl.layout.verify import verify
 
     rects = [(r.x, r.y, r.w, r.h) for r in layout.rooms]
     generated = sum(r.area for r in layout.rooms)
@@ -82,8 +82,8 @@ def _layout_row(spec, layout, area, original_fill, centres) -> dict:
 
 
 def _compile_plan(path: str, time_limit: float, seed: int) -> dict:
-    from layoutdsl.compiler import compile_spec
-    from layoutdsl.cycles import cycle_rank
+    from layoutdsl.compile import compile_spec
+    from layoutdsl.compile.cycles import cycle_rank
     from layoutdsl.solve import SolveOptions
 
     spec, area, original_fill, centres = _original(Path(path))
@@ -180,7 +180,7 @@ def summary(rows: list[dict]) -> str:
 
 def _variant_batch(path: str, seeds: list[int], time_limit: float) -> list[dict]:
     """Compile one variant per seed (graph source, deterministic stopping rule) in this process."""
-    from layoutdsl.variants import _compile_variant
+    from layoutdsl.compile.variants import _compile_variant
     from layoutdsl.solve import SolveOptions
 
     spec, area, original_fill, centres = _original(Path(path))
@@ -247,7 +247,7 @@ def _variants_of_plan(path: str, n: int, seed: int, time_limit: float, workers: 
     """compile --variants N of one plan (graph source): per variant its difference from the
     original, area and fill; pairwise differences."""
     from layoutdsl.solve import SolveOptions
-    from layoutdsl.variants import compile_variants
+    from layoutdsl.compile.variants import compile_variants
 
     spec, area, original_fill, centres = _original(Path(path))
     began = time.monotonic()

@@ -12,8 +12,8 @@ import statistics
 import time
 
 from layoutdsl.check import CHECKS
-from layoutdsl.parser import parse_source
-from layoutdsl.source import Source
+from layoutdsl.syntax.parser import parse_source
+from layoutdsl.diagnostics.source import Source
 
 
 def generate(rooms: int, per_row: int = 40) -> str:

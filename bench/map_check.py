@@ -23,7 +23,7 @@ def main() -> int:
     from layoutdsl.evaluate.portals import realise_portal_graph
     from layoutdsl.evaluate.topology import room_graph, room_ids
     from layoutdsl.importer import read_building
-    from layoutdsl.raster import rasterize_building
+    from layoutdsl.emit.raster import rasterize_building
 
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("folder", nargs="?", type=Path, default=DEFAULT_FOLDER)

@@ -3,7 +3,7 @@
 Every spec in specs/ must be feasible, so it is built from a layout that is known to
 satisfy it: rooms are placed by hand below (metres, bottom-left corners, 0.2 m walls),
 the spec's bounds are derived around the planted sizes, and the planted layout is checked
-with the independent verifier (`layoutdsl.verify`) before the spec is written. The
+with the independent verifier (`layoutdsl.layout.verify`) before the spec is written. The
 Figure 4.2 school keeps the thesis' numbers; only its placement and adjacencies are ours.
 
     python bench/planted_specs.py            # verify every planted layout
@@ -17,7 +17,7 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
-from layoutdsl.ast import (
+from layoutdsl.syntax.ast import (
     Adjacency,
     Boundary,
     Cluster,
@@ -30,11 +30,11 @@ from layoutdsl.ast import (
     Settings,
     Spec,
 )
-from layoutdsl.atomic import write_text_atomic
+from layoutdsl.emit.atomic import write_text_atomic
 from layoutdsl.check import check_spec
-from layoutdsl.format import format_spec
+from layoutdsl.syntax.format import format_spec
 from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, make_portal
-from layoutdsl.verify import verify
+from layoutdsl.layout.verify import verify
 
 SPECS = Path(__file__).resolve().parent.parent / "specs"
 
@@ -135,7 +135,7 @@ def school_fig42() -> tuple[Spec, Layout, str]:
         hints=tuple(Hint(p[0], *p[3:7]) for p in FIG42_PLACED),
     )  # fmt: skip
     header = (
-        "# The school of the thesis' Figure 4.2 (seed §4.1), transcribed.\n"
+        "# The school of the thesis' Figure 4.2 (§4.1), transcribed.\n"
         "# Room numbers and boundary are the figure's; the OCR of the figure lost some ids, so the\n"
         "# two washrooms are read as C0 (2.97 ...) and C1 (3.05 ...). The figure shows only a few\n"
         "# adjacencies; the rest are ours: a tree around corridor C3 and hall C2. The hints are a\n"

@@ -11,12 +11,12 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from layoutdsl.ast import Spec
+from layoutdsl.syntax.ast import Spec
 from layoutdsl.check import check_spec
 from layoutdsl.diagnostics import Diagnostic, has_errors
-from layoutdsl.format import format_spec
-from layoutdsl.parser import parse_source
-from layoutdsl.source import Source
+from layoutdsl.syntax.format import format_spec
+from layoutdsl.syntax.parser import parse_source
+from layoutdsl.diagnostics.source import Source
 
 __all__ = ["parse_source", "lint_source", "load_spec", "read_source", "format_spec", "has_errors"]
 

@@ -47,7 +47,7 @@ harmless."""
 def compiled_spec_layouts() -> dict[str, tuple]:
     """Every spec in specs/ compiled once per test run: stem -> (spec, verified Layout)."""
     from layoutdsl.api import load_spec
-    from layoutdsl.compiler import compile_spec
+    from layoutdsl.compile import compile_spec
     from layoutdsl.solve import SolveOptions
 
     compiled = {}
@@ -59,3 +59,12 @@ def compiled_spec_layouts() -> dict[str, tuple]:
         assert result.layout is not None, [d.message for d in result.diagnostics]
         compiled[path.stem] = (spec, result.layout)
     return compiled
+
+
+def pytest_report_header(config) -> str:
+    from real_plans import CORPUS, CORPUS_MISSING, corpus_plans
+
+    found = corpus_plans()
+    if found:
+        return f"real plans: examples/floorplans and the {len(found)}-plan corpus at {CORPUS}"
+    return f"real plans: examples/floorplans only; {CORPUS_MISSING}"

@@ -11,7 +11,8 @@ import importlib
 import os
 import sys
 
-from layoutdsl import __version__, exitcodes
+from layoutdsl import __version__
+from layoutdsl.diagnostics import exitcodes
 
 # command name -> (module under layoutdsl.cli, one-line help), in the order --help lists them.
 # The one-line help lives here so `layoutdsl --help` need not import every command.
@@ -21,6 +22,7 @@ COMMANDS = {
     "fmt": ("fmt", "print or rewrite a spec in canonical form"),
     "import": ("import_xml", "convert a building XML plan into a spec"),
     "evaluate": ("evaluate", "compare generated plans with their original"),
+    "batch": ("batch", "make many verified buildings from specs and plans, resumably"),
 }
 
 
@@ -28,7 +30,11 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
     """The argument parser; only `command`'s module is imported (all of them when None)."""
     parser = argparse.ArgumentParser(
         prog="layoutdsl",
-        description="Compile building-layout specs into verified floor plans for robot simulation.",
+        description=(
+            "Compile building-layout specs into verified floor plans for robot simulation.\n"
+            "Follows Carideo, Procedural generation of realistic building layouts from graphs\n"
+            "(Politecnico di Milano, 2019); \"the thesis, §5.4\" in messages means its sections."
+        ),
         epilog=exitcodes.EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )

@@ -11,11 +11,13 @@ import argparse
 import sys
 from pathlib import Path
 
-from layoutdsl import exitcodes
 from layoutdsl.cli.argtypes import non_negative_float, non_negative_int, positive_float, positive_int
+from layoutdsl.diagnostics import exitcodes
+from layoutdsl.syntax.ast import EMPHASES
 
-EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
 STRATEGIES = ("auto", "thesis", "cycles")
+"""The strategies compile_spec dispatches over (layoutdsl.compile); defined here, not in
+the solver, so that `--help` need not import Pyomo."""
 
 
 def add_parser(subparsers) -> None:
@@ -24,7 +26,7 @@ def add_parser(subparsers) -> None:
         "compile",
         help="solve a spec into a verified layout and write its files",
         description=(
-            "Compile a layout spec: lint it, solve the thesis' MIQP (seed §5.5.1) with SCIP, "
+            "Compile a layout spec: lint it, solve the thesis' MIQP (§5.5.1) with SCIP, "
             "verify the result independently and write OUTDIR/NAME.layout.json plus the "
             "chosen output formats. Flags override the spec's settings. The same spec and "
             "seed give the same layout whenever the solve stops at its gap, node limit or "
@@ -48,8 +50,14 @@ def add_parser(subparsers) -> None:
     parser.add_argument("--solution-limit", type=positive_int, metavar="N",
                         help="stop after N improving solutions: a deterministic stopping rule")
     parser.add_argument("--emit", default="xml,png,world,map", metavar="FORMATS",
-                        help="comma-separated output formats: xml, png, world, map (default all)")
+                        help="comma-separated output formats: xml, png, world, map (the default "
+                        "set), and the 3D worlds mjcf (MuJoCo), sdf (Gazebo), gltf (mesh; needs "
+                        "pip install 'layoutdsl[sim]')")
     parser.add_argument("--robot-room", metavar="ID", help="room the simulated robot starts in")
+    parser.add_argument("--wall-height", type=positive_float, default=2.5, metavar="M",
+                        help="wall height of the 3D worlds in metres (default 2.5)")
+    parser.add_argument("--no-robot", dest="robot", action="store_false",
+                        help="leave the wheeled robot and its rangefinders out of the MuJoCo scene")
     parser.add_argument("--variants", type=positive_int, metavar="N",
                         help="write N different verified layouts, NAME-1.* ... NAME-N.*: new "
                         "arrangements generated from the room graph (seed, seed+1, ...), each "
@@ -73,7 +81,7 @@ def add_parser(subparsers) -> None:
 
 
 def _print_diagnostics(diagnostics, sources, style: str) -> None:
-    from layoutdsl import render
+    from layoutdsl.diagnostics import render
 
     if not diagnostics:
         return
@@ -96,7 +104,7 @@ def run(args: argparse.Namespace) -> int:
     """Compile one spec; exit 0 with a layout, 1 spec errors, 2 usage/I/O, 3 no layout."""
     from layoutdsl.api import lint_source, read_source
     from layoutdsl.diagnostics import has_errors
-    from layoutdsl.source import Source
+    from layoutdsl.diagnostics.source import Source
 
     try:
         if args.spec == "-":
@@ -115,6 +123,10 @@ def run(args: argparse.Namespace) -> int:
     formats = _formats(args.emit)
     if isinstance(formats, str):
         return _error(formats)
+    from layoutdsl.emit import MAX_WALL_HEIGHT
+
+    if args.wall_height > MAX_WALL_HEIGHT:
+        return _error(f"--wall-height {args.wall_height:g} is taller than {MAX_WALL_HEIGHT:g} m")
     if args.robot_room is not None and spec.room(args.robot_room) is None:
         known = ", ".join(spec.room_ids[:10])
         return _error(f"--robot-room `{args.robot_room}` is not a room of the spec (rooms: {known})")
@@ -138,7 +150,7 @@ def run(args: argparse.Namespace) -> int:
     if args.variants:
         return _run_variants(spec, args, options, outdir, formats)
 
-    from layoutdsl.compiler import compile_spec
+    from layoutdsl.compile import compile_spec
 
     if not args.quiet:
         print(f"compiling `{spec.name}`: {len(spec.rooms)} rooms, time limit {options.time_limit:g} s",
@@ -148,7 +160,8 @@ def run(args: argparse.Namespace) -> int:
     if result.layout is None:
         return exitcodes.NO_LAYOUT
     try:
-        written = write_layout_files(result.layout, outdir, spec.name, formats, robot_room=args.robot_room)
+        written = write_layout_files(result.layout, outdir, spec.name, formats, robot_room=args.robot_room,
+                                     wall_height=args.wall_height, robot=args.robot)
     except OSError as error:
         return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
     except ValueError as error:  # the emitters refuse an option (EmitError)
@@ -159,28 +172,22 @@ def run(args: argparse.Namespace) -> int:
 
 def _formats(text: str) -> tuple[str, ...] | str:
     """The chosen formats, or an error message."""
-    try:
-        from layoutdsl.emit import parse_formats
-    except ImportError:
-        return ()
+    from layoutdsl.emit import parse_formats
+
     try:
         return parse_formats(text)
     except ValueError as error:
         return str(error)
 
 
-def write_layout_files(layout, outdir: Path, stem: str, formats, *, robot_room: str | None = None) -> list[Path]:
+def write_layout_files(layout, outdir: Path, stem: str, formats, *, robot_room: str | None = None,
+                       **world_options) -> list[Path]:
     """NAME.layout.json plus the emitters' files for `formats`, all or nothing."""
     files: dict[str, bytes] = {f"{stem}.layout.json": layout.to_json().encode("utf-8")}
-    try:
-        from layoutdsl.emit import render_outputs, write_rendered
-    except ImportError:
-        from layoutdsl.atomic import write_files_atomic
+    from layoutdsl.emit import render_outputs, write_rendered
 
-        outdir.mkdir(parents=True, exist_ok=True)
-        return write_files_atomic({outdir / name: data for name, data in files.items()})
     if formats:
-        files.update(render_outputs(layout, stem, formats, robot_room=robot_room))
+        files.update(render_outputs(layout, stem, formats, robot_room=robot_room, **world_options))
     return write_rendered(files, outdir)
 
 
@@ -234,24 +241,70 @@ def summary(spec, layout, written: list[Path]) -> str:
     return "\n".join(lines)
 
 
+def variant_differences(spec, layouts):
+    """((i, j) -> arrangement difference of variants i < j, both found; per variant its
+    difference from the spec's hints, None without hints or layout). 1-based indices."""
+    from itertools import combinations
+
+    from layoutdsl.evaluate.difference import difference, hint_centres, layout_centres
+
+    numbered = [(i, layout) for i, layout in enumerate(layouts, start=1) if layout is not None]
+    pairwise = {(i, j): difference(layout_centres(a), layout_centres(b))
+                for (i, a), (j, b) in combinations(numbered, 2)}
+    original = hint_centres(spec) if spec.hints else None
+    from_hints = [None if layout is None or original is None
+                  else difference(layout_centres(layout), original) for layout in layouts]
+    return pairwise, from_hints
+
+
+def _write_variants_report(spec, seed: int, source: str, layouts, pairwise, from_hints,
+                           outdir: Path) -> Path:
+    """NAME-variants.json: each variant's seed and differences, for comparing them later."""
+    import json
+
+    from layoutdsl.emit.atomic import write_text_atomic
+
+    report = {
+        "spec": spec.name,
+        "source": source,
+        "variants": [
+            {"index": index, "seed": seed + index - 1, "found": layout is not None,
+             "difference_from_hints": None if original is None else round(original, 4)}
+            for index, (layout, original) in enumerate(zip(layouts, from_hints), start=1)
+        ],
+        "pairwise_differences": [
+            {"a": i, "b": j, "difference": round(value, 4)} for (i, j), value in sorted(pairwise.items())
+        ],
+    }
+    return write_text_atomic(outdir / f"{spec.name}-variants.json", json.dumps(report, indent=2) + "\n")
+
+
 def _run_variants(spec, args, options, outdir: Path, formats) -> int:
     """--variants N: the construction helper's compile_variants writes NAME-1.* ... NAME-N.*."""
-    try:
-        from layoutdsl.variants import compile_variants
-    except ImportError:
-        return _error("--variants is not available in this build (layoutdsl.variants is missing)")
+    from layoutdsl.compile.variants import compile_variants
+
     try:
         result = compile_variants(spec, args.variants, seed=options.seed, options=options,
                                   outdir=outdir, formats=formats, robot_room=args.robot_room,
-                                  workers=args.workers, source=args.variants_from)
+                                  workers=args.workers, source=args.variants_from,
+                                  world_options={"wall_height": args.wall_height, "robot": args.robot})
     except OSError as error:
         return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
     layouts = list(result.layouts)
     count = sum(1 for layout in layouts if layout is not None)
+    pairwise, from_hints = variant_differences(spec, layouts)
+    paths = list(result.paths)
+    if outdir is not None and count:
+        try:
+            paths.append(_write_variants_report(spec, options.seed, args.variants_from, layouts,
+                                                pairwise, from_hints, outdir))
+        except OSError as error:
+            return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
     line = f"compiled `{spec.name}`: {count} of {args.variants} variants"
-    if result.diversity is not None:
-        line += (f", mean pairwise difference {result.diversity:.2f} (share of room pairs whose "
-                 "relative position differs, best of 8 rotations/mirrors)")
+    if pairwise:
+        mean = sum(pairwise.values()) / len(pairwise)
+        line += (f", mean pairwise difference {mean:.2f} (share of room pairs whose relative "
+                 "position differs, best of 8 rotations/mirrors)")
     lines = [line]
     for index, layout in enumerate(layouts, start=1):
         if layout is None:
@@ -260,13 +313,13 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
         info = layout.solve
         objective = "-" if info is None or info.objective is None else f"{info.objective:.4g}"
         status = "-" if info is None else _STATUS_TEXT.get(info.status, info.status)
-        original = result.from_hints[index - 1]
+        original = from_hints[index - 1]
         versus = "" if original is None else f", difference from the hints {original:.2f}"
         lines.append(f"  {spec.name}-{index}: objective {objective}, {status}{versus}")
-    if result.differences:
+    if pairwise:
         lines.append("  pairwise    " + ", ".join(
-            f"{i}-{j} {value:.2f}" for (i, j), value in sorted(result.differences.items())))
-    if result.paths:
-        lines.append("  wrote       " + ", ".join(str(p) for p in result.paths))
+            f"{i}-{j} {value:.2f}" for (i, j), value in sorted(pairwise.items())))
+    if paths:
+        lines.append("  wrote       " + ", ".join(str(p) for p in paths))
     print("\n".join(lines))
     return exitcodes.OK if count == args.variants else exitcodes.NO_LAYOUT

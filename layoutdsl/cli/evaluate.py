@@ -10,7 +10,7 @@ import argparse
 import sys
 import time
 
-from layoutdsl import exitcodes
+from layoutdsl.diagnostics import exitcodes
 from layoutdsl.cli.argtypes import non_negative_float, positive_float
 from layoutdsl.diagnostics import has_errors
 from layoutdsl.evaluate.explore import ExploreSettings
@@ -25,7 +25,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         help="compare generated plans with their original (topology, areas, paths, exploration)",
         description=(
             "Measure how much generated building plans behave like the real one they come "
-            "from (seed §6.4-6.5): room graph, areas and room sizes, path lengths between "
+            "from (the thesis, §6.4-6.5): room graph, areas and room sizes, path lengths between "
             "entrances, and the effort of a simulated frontier exploration. Writes "
             "report.json, report.md and PNG plots into REPORT_DIR."
         ),
@@ -62,8 +62,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 def _read_plans(paths: list[str]):
     from layoutdsl.importer import read_building
-    from layoutdsl.render import render_full
-    from layoutdsl.source import Source
+    from layoutdsl.diagnostics.render import render_full
+    from layoutdsl.diagnostics.source import Source
 
     buildings, diagnostics, sources = [], [], {}
     for path in paths:

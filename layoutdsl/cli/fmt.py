@@ -5,13 +5,13 @@ from __future__ import annotations
 import argparse
 import sys
 
-from layoutdsl import exitcodes
-from layoutdsl.atomic import write_text_atomic
+from layoutdsl.diagnostics import exitcodes
+from layoutdsl.emit.atomic import write_text_atomic
 from layoutdsl.cli.lint import read_input
 from layoutdsl.diagnostics import has_errors
-from layoutdsl.format import format_source
-from layoutdsl.parser import parse_source
-from layoutdsl.render import render_full
+from layoutdsl.syntax.format import format_source
+from layoutdsl.syntax.parser import parse_source
+from layoutdsl.diagnostics.render import render_full
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:

@@ -3,8 +3,8 @@
 The spec is written in the thesis' intermediate-model format (the thesis, §5.4): the room
 graph, size bounds and boundary, from which `compile` generates a new arrangement. With
 `--keep-arrangement` it also gets a `hints` section (each room's place in the original
-plan), which compile then starts from, so the layout keeps the original arrangement. Diagnostics go to
-stderr; the output file is written atomically and only when the import succeeded.
+plan), which compile then starts from, so the layout keeps the original arrangement.
+Diagnostics go to stderr; the output file is written atomically and only when the import succeeded.
 """
 
 from __future__ import annotations
@@ -14,11 +14,11 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
-from layoutdsl import exitcodes
+from layoutdsl.diagnostics import exitcodes
 from layoutdsl.diagnostics import Diagnostic, has_errors
 from layoutdsl.importer import ImportOptions, import_building
 from layoutdsl.importer import codes as import_codes
-from layoutdsl.source import Source
+from layoutdsl.diagnostics.source import Source
 
 _DEFAULTS = ImportOptions()
 
@@ -27,10 +27,10 @@ def add_parser(subparsers) -> None:
     """Register the `import` subcommand."""
     parser = subparsers.add_parser(
         "import",
-        help="convert a building XML floor plan into a spec (seed §5.3)",
+        help="convert a building XML floor plan into a spec (the thesis, §5.3)",
         description=(
             "Convert a real floor plan in the building XML format into a layout spec:\n"
-            "one rectangular room per space (sizes from its polygon, seed §5.3), one\n"
+            "one rectangular room per space (sizes from its polygon, the thesis, §5.3), one\n"
             "adjacency per pair of spaces joined by a portal, the plan's bounding box as\n"
             "boundary. compile then generates a NEW arrangement of that room graph;\n"
             "--keep-arrangement also writes each room's original place as a hint, and\n"
@@ -88,7 +88,7 @@ def add_parser(subparsers) -> None:
 
 
 def _print_diagnostics(diagnostics: list[Diagnostic], sources: dict[str, Source], style: str) -> None:
-    from layoutdsl import render
+    from layoutdsl.diagnostics import render
 
     if not diagnostics and style != "json":
         return
@@ -104,8 +104,8 @@ def _print_diagnostics(diagnostics: list[Diagnostic], sources: dict[str, Source]
 def run(args: argparse.Namespace) -> int:
     """Import one plan; 0 on success (warnings allowed), 1 on errors, 2 on usage/I/O errors."""
     from layoutdsl.api import lint_source
-    from layoutdsl.atomic import write_text_atomic
-    from layoutdsl.format import format_spec
+    from layoutdsl.emit.atomic import write_text_atomic
+    from layoutdsl.syntax.format import format_spec
 
     try:
         options = ImportOptions(

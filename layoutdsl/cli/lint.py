@@ -5,10 +5,10 @@ from __future__ import annotations
 import argparse
 import sys
 
-from layoutdsl import exitcodes
+from layoutdsl.diagnostics import exitcodes
 from layoutdsl.api import lint_source, read_source
-from layoutdsl.render import render_concise, render_full, render_json, summary
-from layoutdsl.source import Source
+from layoutdsl.diagnostics.render import render_concise, render_full, render_json, summary
+from layoutdsl.diagnostics.source import Source
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:

@@ -4,13 +4,21 @@ Each emitter reads only a `Layout` (never Pyomo objects) and writes its files at
 
 | format  | files                                   | module               |
 |---------|-----------------------------------------|----------------------|
-| `xml`   | `STEM.xml` (building XML, seed §5.2)    | `layoutdsl.emit.xml` |
-| `png`   | `STEM.png` (drawing, seed §5.6)         | `layoutdsl.emit.png` |
+| `xml`   | `STEM.xml` (building XML, the thesis, §5.2)    | `layoutdsl.emit.xml` |
+| `png`   | `STEM.png` (drawing, the thesis, §5.6)         | `layoutdsl.emit.png` |
 | `world` | `STEM.world` + its bitmap `STEM.world.png` (Stage) | `layoutdsl.emit.stage` |
 | `map`   | `STEM.pgm` + `STEM.yaml` (ROS map_server) | `layoutdsl.emit.rosmap` |
+| `mjcf`  | `STEM.mjcf.xml` (MuJoCo scene, robot with a laser ring) | `layoutdsl.emit.mjcf` |
+| `sdf`   | `STEM.sdf` (Gazebo world, SDFormat)     | `layoutdsl.emit.sdf` |
+| `gltf`  | `STEM.glb` (binary glTF 2.0 mesh; needs the `sim` extra) | `layoutdsl.emit.gltf` |
+
+The three 3D formats share one wall geometry (`layoutdsl.emit.walls`), derived from the
+layout like the occupancy raster, and are not written unless asked for: `DEFAULT_FORMATS`
+stays the thesis' 2D set. Their options: `wall_height` (metres) and `robot` (MJCF only:
+include the wheeled robot and its rangefinder ring).
 
 `write_outputs` renders every requested format in memory first and then writes the whole
-set with `layoutdsl.atomic.write_files_atomic`, so a failure anywhere leaves none of the
+set with `layoutdsl.emit.atomic.write_files_atomic`, so a failure anywhere leaves none of the
 call's files behind.
 """
 
@@ -19,11 +27,17 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable, Mapping
 from pathlib import Path
 
-from layoutdsl.atomic import write_files_atomic
+from layoutdsl.emit.atomic import write_files_atomic
 from layoutdsl.layout import Layout
-from layoutdsl.raster import DEFAULT_RESOLUTION
+from layoutdsl.emit.raster import DEFAULT_RESOLUTION
+from layoutdsl.emit.walls import DEFAULT_WALL_HEIGHT
 
 DEFAULT_FORMATS = ("xml", "png", "world", "map")
+WORLD_3D_FORMATS = ("mjcf", "sdf", "gltf")
+FORMATS = DEFAULT_FORMATS + WORLD_3D_FORMATS
+
+MAX_WALL_HEIGHT = 100.0
+"""Tallest wall accepted, metres: anything taller is a typo, not a building."""
 
 MAX_BITMAP_CELLS = 100_000_000
 """Largest Stage/ROS bitmap: 10 000 × 10 000 cells (500 m square at 5 cm)."""
@@ -39,9 +53,17 @@ Emitter = Callable[..., list[Path]]
 
 def _renderers() -> dict[str, Renderer]:
     # Imported lazily so that importing layoutdsl.emit stays cheap.
-    from layoutdsl.emit import png, rosmap, stage, xml
+    from layoutdsl.emit import gltf, mjcf, png, rosmap, sdf, stage, xml
 
-    return {"xml": xml.render, "png": png.render, "world": stage.render, "map": rosmap.render}
+    return {
+        "xml": xml.render,
+        "png": png.render,
+        "world": stage.render,
+        "map": rosmap.render,
+        "mjcf": mjcf.render,
+        "sdf": sdf.render,
+        "gltf": gltf.render,
+    }
 
 
 def write_rendered(files: Mapping[str, bytes], outdir: Path) -> list[Path]:
@@ -59,9 +81,14 @@ def _emitter(name: str) -> Emitter:
         *,
         robot_room: str | None = None,
         resolution: float = DEFAULT_RESOLUTION,
+        wall_height: float = DEFAULT_WALL_HEIGHT,
+        robot: bool = True,
     ) -> list[Path]:
-        check_options(layout, robot_room=robot_room, resolution=resolution)
-        files = _renderers()[name](layout, stem, robot_room=robot_room, resolution=resolution)
+        parse_formats([name])
+        check_options(layout, robot_room=robot_room, resolution=resolution, wall_height=wall_height)
+        files = _renderers()[name](
+            layout, stem, robot_room=robot_room, resolution=resolution, wall_height=wall_height, robot=robot
+        )
         return write_rendered(files, outdir)
 
     emit.__name__ = f"emit_{name}"
@@ -69,8 +96,8 @@ def _emitter(name: str) -> Emitter:
     return emit
 
 
-EMITTERS: dict[str, Emitter] = {name: _emitter(name) for name in DEFAULT_FORMATS}
-"""Format name -> emitter(layout, outdir, stem, *, robot_room=None, resolution=0.05)."""
+EMITTERS: dict[str, Emitter] = {name: _emitter(name) for name in FORMATS}
+"""Format name -> emitter(layout, outdir, stem, *, robot_room=None, resolution=0.05, wall_height=2.5, robot=True)."""
 
 
 def parse_formats(formats: Iterable[str] | str) -> tuple[str, ...]:
@@ -86,11 +113,20 @@ def parse_formats(formats: Iterable[str] | str) -> tuple[str, ...]:
             chosen.append(name)
     if not chosen:
         raise EmitError(f"no output format chosen (valid formats: {', '.join(EMITTERS)})")
+    if "gltf" in chosen:
+        from layoutdsl.emit import gltf
+
+        if not gltf.available():
+            raise EmitError(f"output format `gltf` needs the optional mesh library trimesh: {gltf.INSTALL_HINT}")
     return tuple(chosen)
 
 
-def check_options(layout: Layout, *, robot_room: str | None, resolution: float) -> None:
+def check_options(
+    layout: Layout, *, robot_room: str | None, resolution: float, wall_height: float = DEFAULT_WALL_HEIGHT
+) -> None:
     """Reject bad emitter options before anything is rendered or written."""
+    if not (wall_height > 0 and wall_height <= MAX_WALL_HEIGHT):
+        raise EmitError(f"wall height must be a positive number of metres up to {MAX_WALL_HEIGHT:g}, got {wall_height}")
     if not (resolution > 0 and resolution < 10):
         raise EmitError(f"resolution must be a positive number of metres per cell, got {resolution}")
     if robot_room is not None and robot_room not in {room.id for room in layout.rooms}:
@@ -122,14 +158,20 @@ def render_outputs(
     *,
     robot_room: str | None = None,
     resolution: float = DEFAULT_RESOLUTION,
+    wall_height: float = DEFAULT_WALL_HEIGHT,
+    robot: bool = True,
 ) -> dict[str, bytes]:
     """Render the chosen formats in memory: file name -> content (nothing is written)."""
     chosen = parse_formats(formats)
-    check_options(layout, robot_room=robot_room, resolution=resolution)
+    check_options(layout, robot_room=robot_room, resolution=resolution, wall_height=wall_height)
     renderers = _renderers()
     files: dict[str, bytes] = {}
     for name in chosen:
-        files.update(renderers[name](layout, stem, robot_room=robot_room, resolution=resolution))
+        files.update(
+            renderers[name](
+                layout, stem, robot_room=robot_room, resolution=resolution, wall_height=wall_height, robot=robot
+            )
+        )
     return files
 
 
@@ -141,19 +183,25 @@ def write_outputs(
     *,
     robot_room: str | None = None,
     resolution: float = DEFAULT_RESOLUTION,
+    wall_height: float = DEFAULT_WALL_HEIGHT,
+    robot: bool = True,
 ) -> list[Path]:
     """Write the chosen formats for a layout into `outdir`, all-or-nothing; return the paths.
 
     Raises EmitError (a ValueError) for an unknown format or robot room, before any file is
     written; I/O errors propagate as OSError after every file of this call is rolled back.
     """
-    files = render_outputs(layout, stem, formats, robot_room=robot_room, resolution=resolution)
+    files = render_outputs(
+        layout, stem, formats, robot_room=robot_room, resolution=resolution, wall_height=wall_height, robot=robot
+    )
     return write_rendered(files, outdir)
 
 
 __all__ = [
     "DEFAULT_FORMATS",
     "EMITTERS",
+    "FORMATS",
+    "WORLD_3D_FORMATS",
     "EmitError",
     "check_options",
     "parse_formats",

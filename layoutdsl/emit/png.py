@@ -1,4 +1,4 @@
-"""The drawing (seed §5.6): walls, tinted rooms with their id and label, doors, implicit
+"""The drawing (the thesis, §5.6): walls, tinted rooms with their id and label, doors, implicit
 portals, obstacles, a scale bar and a legend.
 
 Two steps, so the drawing can be golden-tested without comparing pixels:
@@ -26,13 +26,13 @@ from functools import cache
 from PIL import Image, ImageDraw, ImageFont
 
 from layoutdsl.layout import Layout, PlacedRoom, Portal
+from layoutdsl.syntax.ast import ROOM_TYPE_NAMES, ROOM_TYPES
 
 BACKGROUND = "#ffffff"
 WALL = "#2b2b2b"
 TEXT = "#111111"
 ROOM_TINTS = {"R": "#d6e4f7", "C": "#f8d7d7", "E": "#fcf3c7"}
 """Pale blue rooms, red corridors, yellow entrances (Figure 4.3c)."""
-ROOM_TYPE_NAMES = {"R": "room", "C": "corridor", "E": "entrance"}
 OPENING = "#ffffff"
 IMPLICIT = "#555555"
 OBSTACLE_FILL = "#c8c8c8"
@@ -216,7 +216,7 @@ def _portal_primitives(layout: Layout, portal: Portal, frame: _Frame, wall_px: i
     cx, cy = portal.centre
     items: list[Primitive] = []
     tick_px = max(1, wall_px // 2)
-    # a dashed line across the opening: no barrier, yet two spaces (seed §5.2)
+    # a dashed line across the opening: no barrier, yet two spaces (the thesis, §5.2)
     dash_px = max(1, wall_px // 3)
     tag = f"{'door' if portal.kind == 'e' else 'implicit portal'} {portal.a}-{portal.b}"
     if portal.vertical:
@@ -265,7 +265,7 @@ def _legend(layout: Layout, x0: float, y0: float, font: int, scale: float, max_w
     def place(label: str, make: Callable[[float, float], list[Primitive]]) -> None:
         entries.append((label, make))
 
-    for rtype in ("R", "C", "E"):
+    for rtype in ROOM_TYPES:
         place(ROOM_TYPE_NAMES[rtype], lambda x, y, t=rtype: [Rect(x, y, x + swatch, y + swatch, ROOM_TINTS[t], WALL, 1)])
     place(
         "door (explicit portal)",

@@ -12,7 +12,7 @@ import json
 
 from layoutdsl.emit.templating import format_number
 from layoutdsl.layout import Layout
-from layoutdsl.raster import DEFAULT_RESOLUTION, OccupancyGrid, rasterize_layout
+from layoutdsl.emit.raster import DEFAULT_RESOLUTION, OccupancyGrid, rasterize_layout
 
 FREE_VALUE = 254
 OCCUPIED_VALUE = 0

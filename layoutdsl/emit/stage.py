@@ -1,6 +1,6 @@
-"""Stage world writer (seed §6.3.2, §6.3.6): `STEM.world` and its bitmap `STEM.world.png`.
+"""Stage world writer (the thesis, §6.3.2, §6.3.6): `STEM.world` and its bitmap `STEM.world.png`.
 
-The bitmap is the shared rasterization (`layoutdsl.raster.rasterize_layout`): walls black,
+The bitmap is the shared rasterization (`layoutdsl.emit.raster.rasterize_layout`): walls black,
 free space and door openings white, cropped to the outer walls with a one-cell black frame.
 Stage stretches the bounding box of a bitmap's dark pixels to the floorplan's `size` and
 centres it on its `pose`; because the frame makes that box the whole image, `size` is the
@@ -20,7 +20,7 @@ import math
 from dataclasses import dataclass
 
 from layoutdsl.layout import Layout, PlacedRoom
-from layoutdsl.raster import DEFAULT_RESOLUTION, OccupancyGrid, rasterize_layout
+from layoutdsl.emit.raster import DEFAULT_RESOLUTION, OccupancyGrid, rasterize_layout
 
 BITMAP_SUFFIX = ".world.png"
 """The Stage bitmap is `STEM.world.png`, beside the world file (Stage resolves it relative)."""

@@ -19,7 +19,7 @@ def format_number(value: float, decimals: int = 3) -> str:
 def environment() -> Environment:
     """The project's jinja2 environment (STYLE.md): strict, xml-escaped, whitespace-tidy."""
     env = Environment(
-        loader=PackageLoader("layoutdsl"),
+        loader=PackageLoader("layoutdsl.emit"),
         undefined=StrictUndefined,
         autoescape=select_autoescape(["xml", "xml.j2"]),
         trim_blocks=True,

@@ -1,4 +1,4 @@
-"""Building XML writer (seed §5.2, §5.7): a Layout in the format of the real plans.
+"""Building XML writer (the thesis, §5.2, §5.7): a Layout in the format of the real plans.
 
 Units follow the real files: 1 file unit = 1 cm (`represented_distance` 90 pixel ↔
 `real_distance` 90 cm), x to the right, y DOWNWARDS: y_file = (height − y_m) × 100. Space ids
@@ -14,6 +14,8 @@ from __future__ import annotations
 
 import uuid
 from dataclasses import dataclass
+
+from layoutdsl.importer.building import BuildingPortal, LineSegment, Point
 from layoutdsl.layout import Layout, PlacedRoom, Portal
 
 UNITS_PER_METRE = 100.0
@@ -26,40 +28,18 @@ _NAMESPACE = uuid.UUID("6f1f9a52-6c2e-4d8e-9a1d-3b7d0c4e8a10")
 
 
 @dataclass(frozen=True, slots=True)
-class XmlPoint:
-    x: float
-    y: float
-
-
-@dataclass(frozen=True, slots=True)
-class XmlSegment:
-    id: str
-    p1: XmlPoint
-    p2: XmlPoint
-    cls: str
-    type: str
-
-
-@dataclass(frozen=True, slots=True)
-class XmlPortal:
-    segment_id: str
-    type: str
-    targets: tuple[str, str]
-
-
-@dataclass(frozen=True, slots=True)
 class XmlSpace:
     id: str
     rtype: str
     label: str
-    centroid: XmlPoint
-    max_x: XmlPoint
-    max_y: XmlPoint
-    min_x: XmlPoint
-    min_y: XmlPoint
-    polygon: tuple[XmlPoint, ...]
-    segments: tuple[XmlSegment, ...]
-    portals: tuple[XmlPortal, ...]
+    centroid: Point
+    max_x: Point
+    max_y: Point
+    min_x: Point
+    min_y: Point
+    polygon: tuple[Point, ...]
+    segments: tuple[LineSegment, ...]
+    portals: tuple[BuildingPortal, ...]
 
 
 @dataclass(frozen=True, slots=True)
@@ -94,8 +74,8 @@ def _portal_span_on_edge(room: PlacedRoom, portal: Portal) -> tuple[str, float, 
 def _space(layout: Layout, room: PlacedRoom) -> XmlSpace:
     height = layout.height
 
-    def pt(x_m: float, y_m: float) -> XmlPoint:
-        return XmlPoint(round(x_m * UNITS_PER_METRE, 1), round((height - y_m) * UNITS_PER_METRE, 1))
+    def pt(x_m: float, y_m: float) -> Point:
+        return Point(round(x_m * UNITS_PER_METRE, 1), round((height - y_m) * UNITS_PER_METRE, 1))
 
     # Door openings on each edge, as (lo, hi, portal) in metres along the edge.
     openings: dict[str, list[tuple[float, float, Portal]]] = {"top": [], "right": [], "bottom": [], "left": []}
@@ -115,9 +95,9 @@ def _space(layout: Layout, room: PlacedRoom) -> XmlSpace:
         ("bottom", room.x2, room.x, lambda t: (t, room.y)),
         ("left", room.y, room.y2, lambda t: (room.x, t)),
     )
-    segments: list[XmlSegment] = []
-    portals: list[XmlPortal] = []
-    polygon: list[XmlPoint] = []
+    segments: list[LineSegment] = []
+    portals: list[BuildingPortal] = []
+    polygon: list[Point] = []
     for edge, start, end, at in edges:
         forward = end >= start
         ordered = sorted(openings[edge], key=lambda item: item[0], reverse=not forward)
@@ -136,11 +116,11 @@ def _space(layout: Layout, room: PlacedRoom) -> XmlSpace:
             p1, p2 = pt(*at(p_start)), pt(*at(p_end))
             polygon.append(p1)
             if portal is None:
-                segments.append(XmlSegment(seg_id, p1, p2, "WALL", "EXPLICIT"))
+                segments.append(LineSegment(seg_id, p1, p2, "WALL", "EXPLICIT"))
             else:
                 kind = "EXPLICIT" if portal.kind == "e" else "IMPLICIT"
-                segments.append(XmlSegment(seg_id, p1, p2, "PORTAL", kind))
-                portals.append(XmlPortal(seg_id, kind, (portal.a, portal.b)))
+                segments.append(LineSegment(seg_id, p1, p2, "PORTAL", kind))
+                portals.append(BuildingPortal(seg_id, kind, (portal.a, portal.b), segments[-1]))
     polygon.append(polygon[0])  # the real files close the polygon
     cx, cy = room.centre
     return XmlSpace(

@@ -1,4 +1,4 @@
-"""The realism report (issue 7; seed §6.4-6.5): is a generated plan functionally like its original?
+"""The realism report (issue 7; the thesis, §6.4-6.5): is a generated plan functionally like its original?
 
 One module per measure: topology (room graphs), metrics (areas, room sizes), paths
 (any-angle path lengths on the inflated occupancy grid), explore (simulated frontier

@@ -1,4 +1,4 @@
-"""Simulated frontier exploration (seed §6.5), standing in for Stage + GMapping + explore.
+"""Simulated frontier exploration (the thesis, §6.5), standing in for Stage + GMapping + explore.
 
 The robot knows nothing at first. It scans with a 270°, 30 m laser (ray casting on the
 occupancy grid), then repeatedly drives to the nearest frontier goal by path distance

@@ -1,6 +1,6 @@
 """Grids the evaluator works on: robot inflation, coarsening, and which cell is in which room.
 
-The occupancy itself always comes from `layoutdsl.raster` (the Stage/ROS map rasterization);
+The occupancy itself always comes from `layoutdsl.emit.raster` (the Stage/ROS map rasterization);
 this module only derives from it. Cells are (row, col) with row 0 at the top, as there.
 """
 
@@ -12,8 +12,8 @@ from dataclasses import dataclass
 import numpy as np
 from PIL import Image, ImageDraw
 
-from layoutdsl.building import Building
-from layoutdsl.raster import OccupancyGrid
+from layoutdsl.importer.building import Building
+from layoutdsl.emit.raster import OccupancyGrid
 
 
 def disc_offsets(radius_cells: float) -> list[tuple[int, int]]:
@@ -96,7 +96,7 @@ def room_cells(building: Building, grid: OccupancyGrid, room_ids: dict[str, str]
     """Label the cells of `grid` (coarsened by `factor`) with the room they lie in.
 
     `room_ids` maps each space id to the id the report calls it by. Uses the frame of
-    `layoutdsl.raster.rasterize_building`: metres x = x_file·s, y = -y_file·s.
+    `layoutdsl.emit.raster.rasterize_building`: metres x = x_file·s, y = -y_file·s.
     """
     scale = building.metres_per_unit
     rows, cols = grid.shape

@@ -1,10 +1,10 @@
-"""Areas and room sizes of a plan, in square metres and metres (seed §5.3.1, §6.1.1)."""
+"""Areas and room sizes of a plan, in square metres and metres (the thesis, §5.3.1, §6.1.1)."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
-from layoutdsl.building import Building
+from layoutdsl.importer.building import Building
 from layoutdsl.evaluate.topology import room_ids
 
 

@@ -11,7 +11,7 @@ from dataclasses import dataclass, field, replace
 import networkx as nx
 import numpy as np
 
-from layoutdsl.building import Building
+from layoutdsl.importer.building import Building
 from layoutdsl.evaluate.explore import ExploreSettings, ExplorationResult, explore
 from layoutdsl.evaluate.grid import coarsen, inflate, nearest_cell, room_cells
 from layoutdsl.evaluate.metrics import PlanAreas, plan_areas, room_sizes
@@ -19,7 +19,7 @@ from layoutdsl.evaluate.difference import building_centres
 from layoutdsl.evaluate.paths import DistanceGrid, shortest_path
 from layoutdsl.evaluate.portals import MapCheck, realise_portal_graph
 from layoutdsl.evaluate.topology import room_graph, room_ids, sorted_rooms
-from layoutdsl.raster import rasterize_building
+from layoutdsl.emit.raster import rasterize_building
 
 
 @dataclass(frozen=True, slots=True)

@@ -14,9 +14,9 @@ from pathlib import Path
 
 import numpy as np
 
-from layoutdsl.atomic import write_files_atomic
-from layoutdsl.building import Building
+from layoutdsl.emit.atomic import write_files_atomic
 from layoutdsl.evaluate.difference import difference
+from layoutdsl.importer.building import Building
 from layoutdsl.evaluate.metrics import size_deviation
 from layoutdsl.evaluate.plan import EvaluateOptions, PlanMeasures, measure_plan
 from layoutdsl.evaluate.topology import compare_topology

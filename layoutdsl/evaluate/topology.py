@@ -1,4 +1,4 @@
-"""Room graphs of two plans and how they differ (seed §6.4's precondition: same topology).
+"""Room graphs of two plans and how they differ (the thesis, §6.4, compares plans of the same topology).
 
 Rooms are paired by the ids the thesis gives them (§5.7): type letter + order of the room
 among the spaces of that type in the file (R0, R1, ..., C0, ..., E0). A generated plan's
@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import networkx as nx
 
-from layoutdsl.building import Building
+from layoutdsl.importer.building import Building
 
 _SPEC_ID = re.compile(r"^([A-Z])(\d+)$")
 
@@ -20,7 +20,7 @@ _SPEC_ID = re.compile(r"^([A-Z])(\d+)$")
 def room_ids(building: Building) -> dict[str, str]:
     """Space id -> report id: the space's own id when the file already uses spec ids
     (`R0`, `E1`, ... matching the space type), else the importer's ids: type letter and
-    order within that type (seed §5.7), so report rows name the rooms as the spec does."""
+    order within that type (the thesis, §5.7), so report rows name the rooms as the spec does."""
     own = [space.id for space in building.spaces]
     if len(set(own)) == len(own) and all(
         (m := _SPEC_ID.match(space.id)) and m.group(1) == space.rtype for space in building.spaces

@@ -1,4 +1,4 @@
-"""Import real floor plans: building XML -> `Building` -> `Spec` (seed §5.2, §5.3).
+"""Import real floor plans: building XML -> `Building` -> `Spec` (the thesis, §5.2, §5.3).
 
 `read_building` is the project's one building-XML reader (safe against XML attacks, every
 problem a located diagnostic); `convert` applies the thesis' rectangularization and variance
@@ -10,11 +10,11 @@ from __future__ import annotations
 from dataclasses import replace
 from pathlib import Path
 
-from layoutdsl.ast import Spec
+from layoutdsl.syntax.ast import Spec
 from layoutdsl.diagnostics import Diagnostic, has_errors
 from layoutdsl.importer.convert import ImportOptions, convert, original_room_area, room_ids, spec_name
 from layoutdsl.importer.reader import polygon_area, read_building, source_lines
-from layoutdsl.source import Span
+from layoutdsl.diagnostics.source import Span
 
 __all__ = [
     "ImportOptions",

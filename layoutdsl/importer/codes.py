@@ -71,7 +71,7 @@ DEGENERATE_POLYGON = register(
     "space without a usable polygon",
     "Reports a space whose `<bounding_polygon>` is missing, has fewer than three points or "
     "encloses no area.",
-    "A room's size in the spec comes from its polygon's area and bounding box (seed §5.3.1); "
+    "A room's size in the spec comes from its polygon's area and bounding box (the thesis, §5.3.1); "
     "without them the room has no size.",
     "<bounding_polygon>\n  <point x=\"0\" y=\"0\"/>\n</bounding_polygon>   <!-- error -->",
 )
@@ -164,7 +164,7 @@ WIDENED_FOR_DOOR = register(
     Severity.WARNING,
     "room too small for its door",
     "Warns about a room whose longest possible side cannot hold its door plus the two "
-    "wall thicknesses (seed eq. 5.9); the maximum of that side is raised so that the "
+    "wall thicknesses (the thesis, eq. 5.9); the maximum of that side is raised so that the "
     "adjacency can be satisfied.",
     "Without the change the spec has no layout at all; with it the room may be a little "
     "larger than in the original plan.",

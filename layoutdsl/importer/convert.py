@@ -1,4 +1,4 @@
-"""Convert a `Building` (a real plan) into a `Spec` following seed §5.3.
+"""Convert a `Building` (a real plan) into a `Spec` following the thesis, §5.3.
 
 Per space, in file order:
 - rectangularization (§5.3.1): ratio = sqrt(polygon area / bounding-box area); the target
@@ -23,11 +23,11 @@ import re
 from dataclasses import dataclass
 from pathlib import PurePath
 
-from layoutdsl.ast import Adjacency, Boundary, Hint, Room, Settings, Spec
-from layoutdsl.building import Building, Space, polygon_area
+from layoutdsl.syntax.ast import Adjacency, Boundary, Hint, Room, Settings, Spec
+from layoutdsl.importer.building import Building, Space, polygon_area
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.importer import codes
-from layoutdsl.source import Span
+from layoutdsl.diagnostics.source import Span
 
 # The label a space gets when its <label> is empty.
 _DEFAULT_LABELS = {"R": "ROOM", "C": "CORRIDOR", "E": "ENTRANCE"}
@@ -36,7 +36,7 @@ _DIGITS = 3  # millimetres: fine enough for Figure 4.2's centimetres, coarse eno
 
 @dataclass(frozen=True, slots=True)
 class ImportOptions:
-    """Parameters of the conversion (seed §5.3.2). Variances are fractions of the bbox side."""
+    """Parameters of the conversion (the thesis, §5.3.2). Variances are fractions of the bbox side."""
 
     var_plus: float = 0.2
     """variance⁺ of rooms and entrances: how much larger than the target a side may grow."""
@@ -102,7 +102,7 @@ def original_room_area(building: Building) -> float:
 
 
 def room_ids(building: Building) -> dict[str, str]:
-    """Space id -> spec room id (R0, C0, E0, ... by type, in file order; seed §5.7)."""
+    """Space id -> spec room id (R0, C0, E0, ... by type, in file order; the thesis, §5.7)."""
     return building.spec_room_ids()
 
 
@@ -154,7 +154,7 @@ def convert(
     name: str | None = None,
     filename: str = "<building>",
 ) -> tuple[Spec, list[Diagnostic]]:
-    """Turn a Building into a Spec per seed §5.3; warnings say where the plan was adjusted."""
+    """Turn a Building into a Spec per the thesis, §5.3; warnings say where the plan was adjusted."""
     diagnostics: list[Diagnostic] = []
     if not building.spaces:
         # read_building never returns such a Building (E410); one built in code might.

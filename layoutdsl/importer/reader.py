@@ -1,4 +1,4 @@
-"""Read a building XML file (seed §5.2) into a `Building`: the project's one XML reader.
+"""Read a building XML file (the thesis, §5.2) into a `Building`: the project's one XML reader.
 
 The file is untrusted: it is parsed by defusedxml, which refuses entity declarations
 (billion laughs) and external entities (XXE). Every element's line and column are recorded
@@ -23,12 +23,12 @@ from xml.etree.ElementTree import Element
 from defusedxml import DefusedXmlException, DTDForbidden, EntitiesForbidden
 from defusedxml.ElementTree import DefusedXMLParser, ParseError
 
-from layoutdsl.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space, polygon_area
+from layoutdsl.importer.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space, polygon_area
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.importer import codes
-from layoutdsl.source import Span
+from layoutdsl.diagnostics.source import Span
+from layoutdsl.syntax.ast import ROOM_TYPES
 
-ROOM_TYPES = ("R", "C", "E")
 PORTAL_TYPES = ("EXPLICIT", "IMPLICIT")
 
 # Door sizes (metres) a real building can have; outside this the unit is almost surely wrong.
@@ -39,7 +39,7 @@ MAX_COORDINATE = 1e9
 
 _UNIT_TO_M = {"mm": 0.001, "cm": 0.01, "dm": 0.1, "m": 1.0}
 _UNIT_ALIASES = {
-    "": "cm",  # the thesis' default door is given in centimetres (seed §5.2)
+    "": "cm",  # the thesis' default door is given in centimetres (§5.2)
     **{f"{prefix}{word}{plural}": unit
        for prefix, unit in (("milli", "mm"), ("centi", "cm"), ("deci", "dm"), ("", "m"))
        for word in ("metre", "meter") for plural in ("", "s")},
@@ -216,7 +216,7 @@ class _Reader:
                 f"the root element is `<{root.tag}>`, not `<building>`",
                 self.span(root),
                 label="expected `<building>`",
-                help="is this a building XML file (seed §5.2)?",
+                help="is this a building XML file (the thesis, §5.2)?",
             )
             return None
         scale = self.scale(root)

@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 
 from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, make_portal
-from layoutdsl.raster import OccupancyGrid, rasterize_layout, room_cell_labels
+from layoutdsl.emit.raster import OccupancyGrid, rasterize_layout, room_cell_labels
 
 HERE = Path(__file__).parent
 CASES = sorted(path.parent for path in HERE.glob("*/layout.json"))

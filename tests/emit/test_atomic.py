@@ -9,7 +9,7 @@ import pytest
 from _emit_support import load_case
 
 import layoutdsl.emit as emit
-from layoutdsl.atomic import write_files_atomic, write_text_atomic
+from layoutdsl.emit.atomic import write_files_atomic, write_text_atomic
 from layoutdsl.emit import EMITTERS, EmitError, write_outputs
 
 
@@ -35,6 +35,9 @@ def test_each_emitter_writes_only_its_own_files(tmp_path: Path) -> None:
         "png": ["plan.png"],
         "world": ["plan.world", "plan.world.png"],
         "map": ["plan.pgm", "plan.yaml"],
+        "mjcf": ["plan.mjcf.xml"],
+        "sdf": ["plan.sdf"],
+        "gltf": ["plan.glb"],
     }
 
 
@@ -98,7 +101,8 @@ def test_write_set_rejects_a_path_given_twice(tmp_path: Path) -> None:
 
 
 def test_emit_module_exports_the_interface() -> None:
-    assert set(EMITTERS) == {"xml", "png", "world", "map"}
+    assert set(EMITTERS) == {"xml", "png", "world", "map", "mjcf", "sdf", "gltf"}
+    assert emit.DEFAULT_FORMATS == ("xml", "png", "world", "map")
     assert callable(emit.write_outputs) and issubclass(EmitError, ValueError)
 
 

@@ -13,7 +13,7 @@ import pytest
 from _emit_support import CASES, load_case
 
 from layoutdsl.emit import png, stage, xml
-from layoutdsl.raster import rasterize_layout
+from layoutdsl.emit.raster import rasterize_layout
 
 
 @pytest.mark.parametrize("case", CASES, ids=[c.name for c in CASES])

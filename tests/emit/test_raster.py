@@ -19,9 +19,9 @@ from _emit_support import (
     spec_adjacency,
 )
 
-from layoutdsl.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space
+from layoutdsl.importer.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space
 from layoutdsl.layout import Layout, PlacedRoom, make_portal
-from layoutdsl.raster import OccupancyGrid, rasterize_building, rasterize_layout
+from layoutdsl.emit.raster import OccupancyGrid, rasterize_building, rasterize_layout
 
 # Layouts whose bitmap topology must equal their portal graph. The lead extends this with
 # the compiled layout of every spec in specs/ (a parametrization over compiled layouts).

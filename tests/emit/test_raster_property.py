@@ -7,7 +7,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from layoutdsl.layout import Layout, PlacedRoom, make_portal, shared_wall
-from layoutdsl.raster import rasterize_layout
+from layoutdsl.emit.raster import rasterize_layout
 
 MIN_SIDE = 1.2
 

@@ -9,7 +9,7 @@ import pytest
 from _emit_support import CASES, load_case
 
 from layoutdsl.emit import write_outputs
-from layoutdsl.raster import rasterize_layout
+from layoutdsl.emit.raster import rasterize_layout
 
 MAP_SERVER_KEYS = {"image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh", "mode"}
 

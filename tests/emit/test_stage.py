@@ -13,7 +13,7 @@ from PIL import Image
 from layoutdsl.emit import EmitError, write_outputs
 from layoutdsl.emit.stage import render_world, robot_start_room
 from layoutdsl.layout import Layout, PlacedRoom
-from layoutdsl.raster import rasterize_layout
+from layoutdsl.emit.raster import rasterize_layout
 
 # Property names Stage documents, per model type. Sources: the Stage manual's worldfile
 # pages (rtv.github.io/Stage: "world", "worldgui", "model", "position", "ranger"), and the

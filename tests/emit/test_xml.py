@@ -14,7 +14,7 @@ from layoutdsl.emit import write_outputs
 from layoutdsl.emit.xml import render_xml
 from layoutdsl.importer import read_building
 from layoutdsl.layout import Layout
-from layoutdsl.raster import rasterize_building
+from layoutdsl.emit.raster import rasterize_building
 
 LAYOUTS = {**{case.name: (lambda case=case: load_case(case)) for case in CASES}, "school": lambda: school_layout(2, 4)}
 TYPE = {"e": "EXPLICIT", "i": "IMPLICIT"}

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from layoutdsl.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space
+from layoutdsl.importer.building import BoundingBox, Building, BuildingPortal, LineSegment, Point, Space
 
 
 def rect_space(space_id, rtype, label, x, y, w, h, doors=()):

@@ -5,14 +5,10 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
-from pathlib import Path
 
-import pytest
+from real_plans import EXAMPLES
 
-FLOORPLANS = Path("/work/shared/floorplans")
-if not FLOORPLANS.is_dir():  # the corpus ships next to the repository
-    FLOORPLANS = Path(__file__).resolve().parents[3] / "shared" / "floorplans"
-SMALL_PLAN = FLOORPLANS / "school_Lamuniere1.xml"
+SMALL_PLAN = EXAMPLES / "school_Lamuniere1.xml"
 
 
 def _run(*args, cwd=None):
@@ -44,7 +40,6 @@ def test_bad_options_are_usage_errors(tmp_path):
     assert result.returncode == 2 and "positive" in result.stderr
 
 
-@pytest.mark.skipif(not SMALL_PLAN.exists(), reason="real floor plans not available")
 def test_real_plan_against_itself_end_to_end(tmp_path):
     out = tmp_path / "report"
     result = _run(SMALL_PLAN, SMALL_PLAN, "-o", out, "--seed", "1", "-q")

@@ -1,4 +1,4 @@
-"""Known answers for the simulated exploration (seed §6.5)."""
+"""Known answers for the simulated exploration (the thesis, §6.5)."""
 
 from __future__ import annotations
 

@@ -6,7 +6,7 @@ from dataclasses import replace
 
 import pytest
 
-from layoutdsl.building import LineSegment, Point
+from layoutdsl.importer.building import LineSegment, Point
 
 from layoutdsl.evaluate.plan import EvaluateOptions, measure_plan
 from layoutdsl.evaluate.report import evaluate, map_check_warnings, render_markdown

@@ -25,8 +25,8 @@ from pathlib import Path
 
 import networkx as nx
 
-from layoutdsl.atomic import write_text_atomic
-from layoutdsl.format import format_spec
+from layoutdsl.emit.atomic import write_text_atomic
+from layoutdsl.syntax.format import format_spec
 from layoutdsl.importer import import_building, original_room_area, read_building
 
 CORPUS = Path(__file__).resolve().parents[2] / ".." / "shared" / "floorplans"

@@ -8,12 +8,12 @@ from pathlib import Path
 
 import pytest
 
-from layoutdsl import exitcodes
+from layoutdsl.diagnostics import exitcodes
 from layoutdsl.api import lint_source
 from layoutdsl.cli import main
-from layoutdsl.source import Source
+from layoutdsl.diagnostics.source import Source
 
-FIXTURES = Path(__file__).parents[1] / "fixtures" / "floorplans"
+from real_plans import EXAMPLES as FIXTURES
 LAMUNIERE = FIXTURES / "school_Lamuniere1.xml"
 
 

@@ -206,7 +206,7 @@ def test_every_imported_room_has_consistent_feasible_bounds(w, h, cut, rtype, va
 
 
 def test_convert_reports_buildings_built_in_code_that_the_reader_would_refuse():
-    from layoutdsl.building import BoundingBox, Building, Point, Space
+    from layoutdsl.importer.building import BoundingBox, Building, Point, Space
 
     flat = Space("s", "R", "ROOM", None, BoundingBox(0, 0, 10, 0), (Point(0, 0), Point(10, 0), Point(5, 0)), (), ())
     spec, diagnostics = convert(Building("b", 90, 0.9, (flat,)), ImportOptions())

@@ -19,12 +19,14 @@ import pytest
 
 from layoutdsl.api import lint_source
 from layoutdsl.diagnostics import has_errors
-from layoutdsl.format import format_spec
+from layoutdsl.syntax.format import format_spec
 from layoutdsl.importer import ImportOptions, import_building, original_room_area, read_building
-from layoutdsl.source import Source
+from layoutdsl.diagnostics.source import Source
 
-CORPUS = Path(__file__).parents[2] / ".." / "shared" / "floorplans"
-PLANS = sorted(CORPUS.glob("*.xml"))
+from real_plans import CORPUS, CORPUS_SIZE, corpus_plans, needs_corpus
+
+PLANS = corpus_plans()
+pytestmark = needs_corpus
 
 
 def _index_counts() -> dict[str, tuple[int, int, int]]:
@@ -60,7 +62,7 @@ def _expected_graph(path: Path):
 
 
 def test_the_corpus_is_there():
-    assert len(PLANS) == 24, f"expected the 24 real plans in {CORPUS.resolve()}"
+    assert len(PLANS) == CORPUS_SIZE, f"expected the {CORPUS_SIZE} real plans in {CORPUS}"
 
 
 @pytest.mark.parametrize("plan", PLANS, ids=[plan.stem for plan in PLANS])

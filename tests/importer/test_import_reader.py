@@ -2,18 +2,17 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 
 import pytest
 from _import_plans import PlanSpace, plan_xml, rect
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from layoutdsl.building import Point
+from layoutdsl.importer.building import Point
 from layoutdsl.diagnostics import CODES
 from layoutdsl.importer import import_building, read_building
 
-FIXTURES = Path(__file__).parents[1] / "fixtures" / "floorplans"
+from real_plans import EXAMPLES as FIXTURES
 
 BILLION_LAUGHS = """<?xml version="1.0"?>
 <!DOCTYPE building [

@@ -1,0 +1,52 @@
+"""The linter: pure checks over a parsed Spec, each yielding located Diagnostics.
+
+CHECKS is an ordered tuple of `check_*(spec)` functions (sqlglot's optimizer RULES). A
+check reports every problem it finds, never only the first. Later checks skip what an
+earlier one already reported (an unknown room has no size to compare), so one mistake
+gives one message. Geometry follows the thesis model (§5.5.1): rooms may be rotated,
+corridors have no aspect-ratio limit (5.6), a shared wall must be at least
+door / door_utilization long (5.9).
+"""
+
+from __future__ import annotations
+
+from layoutdsl.check.geometry import (
+    check_boundary,
+    check_doors,
+    check_fit,
+    check_points,
+    check_room_sizes,
+    check_shared_points,
+    reachable_ratios,
+)
+from layoutdsl.check.names import check_duplicate_ids, check_references, check_repeats
+from layoutdsl.check.topology import check_components, check_planarity
+from layoutdsl.diagnostics import Diagnostic
+from layoutdsl.syntax.ast import Spec
+
+__all__ = ["CHECKS", "check_spec", "reachable_ratios"]
+
+CHECKS = (
+    check_duplicate_ids,
+    check_references,
+    check_repeats,
+    check_room_sizes,
+    check_boundary,
+    check_fit,
+    check_doors,
+    check_points,
+    check_shared_points,
+    check_planarity,
+    check_components,
+)
+"""Every check, in order. Each is pure: Spec -> iterator of Diagnostic."""
+
+
+def check_spec(spec: Spec) -> list[Diagnostic]:
+    """Run every check and return all diagnostics sorted by position."""
+    diagnostics: list[Diagnostic] = []
+    for check in CHECKS:
+        diagnostics.extend(check(spec))
+    diagnostics.sort(key=Diagnostic.sort_key)
+    return diagnostics
+

@@ -1,0 +1,176 @@
+"""`layoutdsl batch INPUT... -o OUTDIR --variants N`: many verified buildings, resumably.
+
+Each building (a plan's variant) gets OUTDIR/NAME-vK/ with its usual files; OUTDIR/manifest.jsonl
+lists every building once. Re-running the same command skips what is done and intact and
+redoes missing or failed buildings. The progress bar goes to stderr (only on a terminal, not
+with -q); the summary goes to stdout.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from layoutdsl.diagnostics import exitcodes
+from layoutdsl.cli.argtypes import non_negative_float, non_negative_int, positive_float, positive_int
+from layoutdsl.cli.compile import EMPHASES, STRATEGIES
+
+BATCH_NODE_LIMIT = 20
+"""Default branch-and-bound node limit: a deterministic stopping rule, so the same batch gives
+the same bytes on any worker. The neighbourhood search before it stops after a full pass
+without an improvement (also deterministic)."""
+
+BATCH_TIME_LIMIT = 300.0
+"""Default time limit per building: only a safety net above the node limit; a building that
+reaches it is still written, but its solve_status says `time_limit` (timing-dependent)."""
+
+MAX_FAILURES_SHOWN = 10
+
+
+def add_parser(subparsers) -> None:
+    """Register the `batch` subcommand."""
+    parser = subparsers.add_parser(
+        "batch",
+        help="make many verified buildings from specs and plans, resumably",
+        description=(
+            "Make N variants of every input (specs .lay, building XML plans .xml, folders of\n"
+            "them, or list files .txt/.list with one path per line). Each building is compiled\n"
+            "in its own process, verified, and written to OUTDIR/NAME-vK/; OUTDIR/manifest.jsonl\n"
+            "has one JSON record per building (load it with pandas.read_json(path, lines=True)).\n"
+            "Run the same command again to finish an interrupted or partly failed batch: done\n"
+            "buildings whose files are intact are skipped. Seeds come from (plan name, variant,\n"
+            "--seed), so a building's bytes do not depend on where or when it ran."
+        ),
+        epilog=exitcodes.EPILOG + "  (batch: 3 when at least one building failed; see the manifest)\n",
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("inputs", nargs="+", metavar="INPUT", help="spec, plan, folder or list file")
+    parser.add_argument("-o", "--output", required=True, metavar="OUTDIR", help="the dataset's folder")
+    parser.add_argument("--variants", type=positive_int, default=1, metavar="N",
+                        help="buildings per input (default 1)")
+    parser.add_argument("--seed", type=non_negative_int, default=0, metavar="N",
+                        help="base seed; each building's seed is derived from it (default 0)")
+    parser.add_argument("--engine", choices=("pool", "dask"), default="pool",
+                        help="pool: processes on this machine (default); dask: a Dask cluster, "
+                        "the one at --address or a local one (needs layoutdsl[cluster])")
+    parser.add_argument("--address", metavar="HOST:PORT",
+                        help="the Dask scheduler to use (with --engine dask)")
+    parser.add_argument("--workers", type=positive_int, metavar="N",
+                        help="buildings at once on this machine (default: every core); with "
+                        "--engine dask and no --address, the local cluster's worker count")
+    parser.add_argument("--node-limit", type=positive_int, default=BATCH_NODE_LIMIT, metavar="N",
+                        help=f"branch-and-bound nodes per building (default {BATCH_NODE_LIMIT}, deterministic)")
+    parser.add_argument("--solution-limit", type=positive_int, metavar="N",
+                        help="stop after N improving solutions (deterministic)")
+    parser.add_argument("--time-limit", type=positive_float, default=BATCH_TIME_LIMIT, metavar="S",
+                        help=f"seconds per building's solve (default {BATCH_TIME_LIMIT:g}; a safety net: "
+                        "a solve stopped by it may differ from run to run)")
+    parser.add_argument("--gap", type=non_negative_float, metavar="G", help="stop at this relative gap")
+    parser.add_argument("--emphasis", choices=EMPHASES, help="SCIP emphasis")
+    parser.add_argument("--strategy", choices=STRATEGIES, default="auto", help="as for compile")
+    parser.add_argument("--timeout", type=positive_float, metavar="S",
+                        help="kill a building's process after S seconds (default: 2 x time limit + 60)")
+    parser.add_argument("--emit", default="xml,png,world,map", metavar="FORMATS",
+                        help="comma-separated output formats, as for compile (default xml,png,world,map)")
+    parser.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    parser.set_defaults(run=run)
+
+
+def _error(message: str) -> int:
+    print(f"layoutdsl batch: error: {message}", file=sys.stderr)
+    return exitcodes.USAGE
+
+
+def run(args: argparse.Namespace) -> int:
+    """Run a batch; 0 when every building is done, 3 when some failed, 2 on usage/I/O errors."""
+    from pathlib import Path
+
+    from layoutdsl.batch import (
+        BatchBusy, BatchInputError, EngineUnavailable, SolveLimits, default_workers, plan_jobs, run_batch,
+    )
+    from layoutdsl.emit import EmitError, parse_formats
+
+    if args.address and args.engine != "dask":
+        return _error("--address needs --engine dask")
+    if args.engine == "dask":
+        from layoutdsl.batch.executors import CLUSTER_EXTRA_HINT
+
+        try:
+            import distributed  # noqa: F401
+        except ImportError:
+            return _error(f"--engine dask needs the `distributed` package: {CLUSTER_EXTRA_HINT}")
+    try:
+        formats = parse_formats(args.emit)
+    except EmitError as error:
+        return _error(str(error))
+    outdir = Path(args.output)
+    if outdir.exists() and not outdir.is_dir():
+        return _error(f"`{outdir}` exists and is not a directory")
+    limits = SolveLimits(time_limit=args.time_limit, node_limit=args.node_limit, solution_limit=args.solution_limit,
+                         gap=args.gap, emphasis=args.emphasis, strategy=args.strategy)
+    timeout = args.timeout or 2 * args.time_limit + 60
+    try:
+        jobs = plan_jobs(args.inputs, args.variants, base_seed=args.seed, limits=limits,
+                         formats=formats, timeout=timeout)
+    except BatchInputError as error:
+        return _error(str(error))
+    workers = args.workers or default_workers()
+    show = not args.quiet and sys.stderr.isatty()
+    display = _Progress(len(jobs)) if show else None
+    try:
+        summary = run_batch(jobs, outdir, engine=args.engine, workers=workers, address=args.address,
+                            progress=display, running=display.running if display else None)
+    except (BatchBusy, EngineUnavailable) as error:
+        return _error(str(error))
+    except OSError as error:
+        return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
+    finally:
+        if display:
+            display.close()
+    where = f"dask at {args.address}" if args.address else (
+        f"local dask cluster, {workers} workers" if args.engine == "dask" else f"{workers} processes")
+    rate = summary.done / (summary.seconds / 60) if summary.seconds > 0 else 0.0
+    lines = [
+        f"batch `{outdir}`: {summary.total} buildings: {summary.skipped} already done, "
+        f"{summary.done} made, {summary.failed} failed ({where})",
+        f"  time        {summary.seconds:.1f} s, {rate:.1f} buildings/min",
+        f"  manifest    {summary.manifest}",
+    ]
+    for building, reason in summary.failures[:MAX_FAILURES_SHOWN]:
+        lines.append(f"  failed      {building}: {reason}")
+    if len(summary.failures) > MAX_FAILURES_SHOWN:
+        lines.append(f"  ...         {len(summary.failures) - MAX_FAILURES_SHOWN} more failures in the manifest")
+    if summary.failed:
+        lines.append("  run the same command again to retry the failed buildings")
+    print("\n".join(lines))
+    return exitcodes.NO_LAYOUT if summary.failed else exitcodes.OK
+
+
+class _Progress:
+    """A tqdm bar: done / failed / running, rate and ETA, over the buildings left to make."""
+
+    def __init__(self, total: int) -> None:
+        from layoutdsl.batch.executors import Running
+
+        self.total = total
+        self.running = Running()
+        self.bar = None
+        self.failed = 0
+
+    def __call__(self, event: str, payload) -> None:
+        from tqdm import tqdm
+
+        if event == "start":
+            # the bar counts this run's buildings, so rate and ETA are this run's
+            self.bar = tqdm(total=payload, unit="bldg", file=sys.stderr, dynamic_ncols=True,
+                            desc="batch", smoothing=0.1)
+        elif event == "finished" and self.bar is not None:
+            outcome = payload
+            if not outcome.ok:
+                self.failed += 1
+            self.bar.update(1)
+            self.bar.set_postfix(failed=self.failed, running=self.running.count, refresh=True)
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()

@@ -1,0 +1,899 @@
+"""First feasible layout, built fast and without relying on SCIP's luck (issue 6).
+
+The thesis' model (§5.5.1) is hard for SCIP because of its four non-overlap binaries
+per room pair: from ~25 rooms up SCIP finds no feasible layout at all, while from a feasible
+start it polishes well. So we construct the start ourselves:
+
+1. A *seed geometry*: one rectangle per room, allowed to overlap. For an imported spec it
+   is the original plan (the `hints`); otherwise a placement grown from the room graph
+   (`construct_geometry`), randomised for variants.
+2. From the geometry, each pair of rooms (and room and obstacle) gets its *relation*: the
+   direction along the axis that separates them most, in the geometry's centre order, so
+   the "left of" and "below" relations are acyclic. Each room's orientation follows its
+   seed rectangle. With every relation fixed the model is an LP.
+3. Repair, round by round: the LP is solved *elastically* (each pair's constraints may be
+   stretched at a cost, everything else - sizes, aspect ratios, boundary, onB, positions,
+   connections, clusters - stays hard). The pairs it had to stretch, and the pairs near
+   their rooms, get more freedom for the next round: one binary (either axis), then all
+   four directions, and after a stall the rooms' graph neighbours join in. Each round is a
+   small MIP warm-started from the previous solution, stopped at zero stretch.
+4. With zero stretch the relations are final: one more LP brings the sizes to their
+   targets, and the rectangles are checked against every hard constraint (our own check,
+   then `layoutdsl.layout.verify`) before they are returned.
+
+Measured on the 24 real plans (hints from the importer): all 24 construct, median 0.1 s,
+at most ~15 s (school_wilbraham); see bench/bench.py.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import random
+import sys
+import time
+from dataclasses import dataclass
+
+from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
+from layoutdsl.compile.generate import RoomSizes, generate_geometry
+from layoutdsl.syntax.ast import Room, Spec
+
+
+def _debug(message: str) -> None:
+    if os.environ.get("LAYOUTDSL_DEBUG_CONSTRUCT"):
+        print(message, file=sys.stderr, flush=True)
+
+
+SAFETY = 1e-6
+"""Metres added to every strict inequality so SCIP's feasibility tolerance cannot make the
+verifier (tolerance ~1e-6) see a violation."""
+
+
+
+# ---------------------------------------------------------------------------------------
+# Relations between pairs, read off a seed geometry
+# ---------------------------------------------------------------------------------------
+
+DIRECTIONS = SIDES
+"""Where the first thing of a pair lies relative to the second (layout.geometry.SIDES)."""
+
+Pair = tuple[str, str]
+"""(room, room) or (room, obstacle), rooms in spec order."""
+
+
+def _centre(rect: Rect) -> tuple[float, float]:
+    x, y, w, h = rect
+    return (x + w / 2, y + h / 2)
+
+
+def _separations(a: Rect, b: Rect) -> tuple[float, float]:
+    """Gap between two rectangles along x and along y (negative: they overlap that much)."""
+    ax, ay, aw, ah = a
+    bx, by, bw, bh = b
+    return (max(bx - ax - aw, ax - bx - bw), max(by - ay - ah, ay - by - bh))
+
+
+def _ordered_directions(a: Rect, b: Rect, index_a: int, index_b: int) -> tuple[str, str]:
+    """The x-side and the y-side of a relative to b that follow the centre order.
+
+    Ties are broken by the pair's indices, so the induced orders are strict and total:
+    whatever axis each pair uses, no chain of "left of" or "below" constraints can close
+    into a cycle, which keeps the relation system satisfiable in a large enough boundary.
+    """
+    (acx, acy), (bcx, bcy) = _centre(a), _centre(b)
+    right = (bcx, index_b) > (acx, index_a)
+    up = (bcy, index_b) > (acy, index_a)
+    return ("left" if right else "right", "below" if up else "above")
+
+
+@dataclass(frozen=True, slots=True)
+class _Problem:
+    """What the relation models of one spec share, computed once."""
+
+    spec: Spec
+    width: float
+    height: float
+    walldim: float
+    walls: dict[frozenset[str], float]
+    """Adjacent room pair -> shared wall length it needs."""
+    obstacles: dict[str, Rect]
+    pairs: tuple[Pair, ...]
+    order: dict[str, int]
+    big_m: float
+
+    @staticmethod
+    def of(spec: Spec) -> _Problem:
+        """Precompute the pairs and constants of the spec."""
+        boundary = spec.boundary
+        assert boundary is not None
+        settings = spec.settings
+        walls = {
+            frozenset((adj.a, adj.b)): adj.door / settings.door_utilization + SAFETY
+            for adj in spec.adjacencies
+        }
+        obstacles = {ob.id: (ob.x, ob.y, ob.w, ob.h) for ob in boundary.obstacles}
+        ids = [room.id for room in spec.rooms]
+        order = {room_id: index for index, room_id in enumerate(ids)}
+        for index, ob_id in enumerate(obstacles):
+            order[ob_id] = len(ids) + index
+        pairs = [(a, b) for i, a in enumerate(ids) for b in ids[i + 1:]]
+        pairs += [(a, ob_id) for a in ids for ob_id in obstacles]
+        longest_wall = max(walls.values(), default=0.0)
+        return _Problem(
+            spec=spec,
+            width=boundary.w,
+            height=boundary.h,
+            walldim=settings.walldim,
+            walls=walls,
+            obstacles=obstacles,
+            pairs=tuple(pairs),
+            order=order,
+            big_m=max(boundary.w, boundary.h) + settings.walldim + longest_wall + 1.0,
+        )
+
+    def rect(self, geometry: dict[str, Rect], thing: str) -> Rect:
+        return self.obstacles[thing] if thing in self.obstacles else geometry[thing]
+
+    def axis_choices(self, geometry: dict[str, Rect], pair: Pair) -> tuple[str, str]:
+        """The pair's two centre-ordered directions, the geometry's clearer one first."""
+        a, b = pair
+        ra, rb = self.rect(geometry, a), self.rect(geometry, b)
+        sep_x, sep_y = _separations(ra, rb)
+        dir_x, dir_y = _ordered_directions(ra, rb, self.order[a], self.order[b])
+        return (dir_x, dir_y) if sep_x >= sep_y else (dir_y, dir_x)
+
+    def distance(self, geometry: dict[str, Rect], pair: Pair) -> float:
+        a, b = pair
+        return max(_separations(self.rect(geometry, a), self.rect(geometry, b)))
+
+
+# ---------------------------------------------------------------------------------------
+# The relation model, solved with SCIP
+# ---------------------------------------------------------------------------------------
+
+
+class _Box:
+    """A rectangle of the model: SCIP variables for a room, constants for an obstacle."""
+
+    __slots__ = ("x", "y", "w", "h")
+
+    def __init__(self, x, y, w, h):
+        self.x, self.y, self.w, self.h = x, y, w, h
+
+
+def _add_direction(model, a: _Box, b: _Box, direction: str, gap: float, slack) -> None:
+    """a lies on the `direction` side of b with at least `gap` between them, up to `slack`."""
+    if direction == "left":
+        model.addCons(a.x + a.w + gap - b.x <= slack)
+    elif direction == "right":
+        model.addCons(b.x + b.w + gap - a.x <= slack)
+    elif direction == "below":
+        model.addCons(a.y + a.h + gap - b.y <= slack)
+    else:
+        model.addCons(b.y + b.h + gap - a.y <= slack)
+
+
+def _add_adjacent(model, a: _Box, b: _Box, direction: str, walldim: float, wall: float,
+                  slack) -> None:
+    """a touches b on its `direction` side: exactly one wall between, `wall` m shared."""
+    if direction in ("left", "right"):
+        first, second = (a, b) if direction == "left" else (b, a)
+        model.addCons(first.x + first.w + walldim - second.x <= slack)
+        model.addCons(second.x - first.x - first.w - walldim <= slack)
+        model.addCons(a.y + wall - b.y - b.h <= slack)
+        model.addCons(b.y + wall - a.y - a.h <= slack)
+    else:
+        first, second = (a, b) if direction == "below" else (b, a)
+        model.addCons(first.y + first.h + walldim - second.y <= slack)
+        model.addCons(second.y - first.y - first.h - walldim <= slack)
+        model.addCons(a.x + wall - b.x - b.w <= slack)
+        model.addCons(b.x + wall - a.x - a.w <= slack)
+
+
+FINAL_STRETCH_COST = 1e4
+"""Per metre of stretch in the final LP: far above any size deviation it could buy."""
+
+ADJACENCY_STRETCH_WEIGHT = 4.0
+"""Stretching an adjacency costs more than stretching a separation, so the repair model
+blames (and the next round frees) the separations that keep adjacent rooms apart."""
+
+
+@dataclass
+class _Outcome:
+    """A solved relation model: rectangles, the direction each pair took, what it stretched."""
+
+    rects: dict[str, Rect]
+    chosen: dict[Pair, str]
+    stretched: dict[Pair, float]
+    values: dict[str, float]
+    """Every variable's value by name, to warm-start the next, wider model."""
+    orientations: dict[str, bool]
+    """Room id -> True when the room's long side lies along x."""
+
+
+def _solve_model(
+    problem: _Problem,
+    geometry: dict[str, Rect],
+    options: dict[Pair, tuple[str, ...]],
+    *,
+    mode: str,
+    seconds: float,
+    seed: int,
+    orientations: dict[str, bool],
+    turnable: frozenset[str] = frozenset(),
+    start: _Outcome | None = None,
+    feasibility_emphasis: bool = False,
+) -> _Outcome | None:
+    """Solve the rooms' LP/MIP under the allowed pair directions; None without a solution.
+
+    mode "repair": each pair's constraints may be stretched at a cost; the objective is the
+    total stretch and SCIP stops as soon as it reaches zero. mode "final": the same, but a
+    stretch costs so much that only the linear deviation of the sizes from their targets is
+    left to minimise (elastic rather than hard, so SCIP's tolerances cannot make it fail).
+    """
+    if mode not in ("repair", "final"):
+        raise ValueError(f"unknown mode {mode!r}")
+    repair = mode == "repair"
+    from pyscipopt import Model, quicksum
+
+    spec = problem.spec
+    settings = spec.settings
+    width, height, big_m = problem.width, problem.height, problem.big_m
+
+    model = Model("construct")
+    model.hideOutput()
+    model.setParam("display/verblevel", 0)
+    model.setParam("limits/time", max(0.05, seconds))
+    model.setParam("randomization/randomseedshift", seed % 2**31)
+    model.setParam("numerics/feastol", 1e-9)
+    if repair:
+        model.setParam("limits/primal", 1e-7)
+        if feasibility_emphasis:
+            # measured on the real plans: a stalled repair (school_wilbraham) gets out in
+            # 5 s with SCIP's feasibility emphasis and not in 60 s with the defaults, while
+            # the defaults are faster on the easy first rounds
+            from pyscipopt import SCIP_PARAMEMPHASIS
+
+            model.setEmphasis(SCIP_PARAMEMPHASIS.FEASIBILITY)
+    else:
+        model.setParam("limits/gap", 1e-4)
+
+    boxes: dict[str, _Box] = {}
+    deviation = []
+    orientation_vars: dict[str, object] = {}
+    for room in spec.rooms:
+        sizes = RoomSizes.of(room)
+        long_x = orientations[room.id]
+        x = model.addVar(f"x_{room.id}", lb=0.0, ub=width)
+        y = model.addVar(f"y_{room.id}", lb=0.0, ub=height)
+        if room.id in turnable:
+            w, h, targets = _turnable_sizes(model, room, sizes)
+            orientation_vars[room.id] = targets[2]
+            targets = targets[:2]
+        else:
+            w_lo, w_hi, h_lo, h_hi = sizes.bounds(long_x)
+            w_lo, h_lo = w_lo + SAFETY, h_lo + SAFETY
+            w_hi, h_hi = max(w_lo, w_hi - SAFETY), max(h_lo, h_hi - SAFETY)
+            w = model.addVar(f"w_{room.id}", lb=w_lo, ub=w_hi)
+            h = model.addVar(f"h_{room.id}", lb=h_lo, ub=h_hi)
+            if not sizes.corridor:
+                long_side, short_side = (w, h) if long_x else (h, w)
+                model.addCons(sizes.min_ar * short_side + SAFETY <= long_side)
+                model.addCons(long_side <= sizes.max_ar * short_side - SAFETY)
+            targets = sizes.targets(long_x)
+        model.addCons(x + w <= width - SAFETY)
+        model.addCons(y + h <= height - SAFETY)
+        boxes[room.id] = _Box(x, y, w, h)
+        if not repair:
+            for var, target in zip((w, h), targets):
+                dev = model.addVar(f"d_{var.name}", lb=0.0)
+                model.addCons(dev >= var - target)
+                model.addCons(dev >= target - var)
+                deviation.append(room.rho_error * dev)
+    for ob_id, (ox, oy, ow, oh) in problem.obstacles.items():
+        boxes[ob_id] = _Box(ox, oy, ow, oh)
+
+    for room in spec.rooms:
+        if not room.on_boundary:
+            continue
+        box = boxes[room.id]
+        sides = [model.addVar(f"onb_{room.id}_{side}", vtype="B") for side in "lrdu"]
+        model.addCons(box.x <= big_m * (1 - sides[0]))
+        model.addCons(box.x + box.w >= width - SAFETY - big_m * (1 - sides[1]))
+        model.addCons(box.y <= big_m * (1 - sides[2]))
+        model.addCons(box.y + box.h >= height - SAFETY - big_m * (1 - sides[3]))
+        model.addCons(quicksum(sides) >= 1)
+
+    points = [(p.room, p.x, p.y) for p in spec.positions]
+    for c in spec.connections:
+        points += [(c.room, c.x1, c.y1), (c.room, c.x2, c.y2)]
+    for room_id, px, py in points:
+        box = boxes[room_id]
+        model.addCons(box.x <= px - SAFETY)
+        model.addCons(box.x + box.w >= px + SAFETY)
+        model.addCons(box.y <= py - SAFETY)
+        model.addCons(box.y + box.h >= py + SAFETY)
+    margin = settings.cluster_margin
+    reach = 2 * max(width, height) + 10.0
+    for cluster in spec.clusters:
+        cx = model.addVar(f"cx_{cluster.id}", lb=-reach, ub=reach)
+        cy = model.addVar(f"cy_{cluster.id}", lb=-reach, ub=reach)
+        for member in cluster.members:
+            box = boxes[member.room]
+            model.addCons(box.x - margin + SAFETY <= member.x + cx)
+            model.addCons(box.x + box.w + margin - SAFETY >= member.x + cx)
+            model.addCons(box.y - margin + SAFETY <= member.y + cy)
+            model.addCons(box.y + box.h + margin - SAFETY >= member.y + cy)
+
+    gap = problem.walldim + SAFETY
+    binaries: dict[Pair, list] = {}
+    stretches: dict[Pair, object] = {}
+    penalty = []
+    for pair, allowed in options.items():
+        a, b = pair
+        wall = problem.walls.get(frozenset(pair))
+        stretch = model.addVar(f"s_{a}_{b}", lb=0.0)
+        stretches[pair] = stretch
+        penalty.append((ADJACENCY_STRETCH_WEIGHT if wall else 1.0) * stretch)
+        if len(allowed) == 1:
+            switches = [None]
+        else:
+            switches = [model.addVar(f"z_{a}_{b}_{d}", vtype="B") for d in allowed]
+            binaries[pair] = switches
+            model.addCons(quicksum(switches) >= 1)
+        for direction, on in zip(allowed, switches):
+            slack = stretch if on is None else stretch + big_m * (1 - on)
+            if wall is None:
+                _add_direction(model, boxes[a], boxes[b], direction, gap, slack)
+            else:
+                _add_adjacent(model, boxes[a], boxes[b], direction, problem.walldim, wall, slack)
+
+    if repair:
+        model.setObjective(quicksum(penalty), "minimize")
+    else:
+        model.setObjective(quicksum(deviation) + FINAL_STRETCH_COST * quicksum(penalty), "minimize")
+    if start is not None:
+        _add_start(model, start, options)
+    model.optimize()
+    status = model.getStatus()
+    _debug(f"    {mode} model: {status} in "
+           f"{model.getSolvingTime():.2f}s, {len(binaries)} free pairs, {model.getNSols()} sols")
+    if model.getNSols() == 0:
+        return None
+    solution = model.getBestSol()
+    chosen: dict[Pair, str] = {}
+    for pair, allowed in options.items():
+        switches = binaries.get(pair)
+        if switches is None:
+            chosen[pair] = allowed[0]
+        else:
+            values = [solution[on] for on in switches]
+            chosen[pair] = allowed[max(range(len(allowed)), key=lambda i: values[i])]
+    stretched = {pair: solution[var] for pair, var in stretches.items() if solution[var] > 1e-6}
+    _debug(f"    max stretch {max((solution[v] for v in stretches.values()), default=0):.3g}")
+    rects = {
+        room.id: (solution[boxes[room.id].x], solution[boxes[room.id].y],
+                  solution[boxes[room.id].w], solution[boxes[room.id].h])
+        for room in spec.rooms
+    }
+    values = {var.name: solution[var] for var in model.getVars()}
+    turned = dict(orientations)
+    for room_id, var in orientation_vars.items():
+        turned[room_id] = solution[var] > 0.5
+    return _Outcome(rects, chosen, stretched, values, turned)
+
+
+def _turnable_sizes(model, room: Room, sizes: RoomSizes):
+    """w, h and (target w, target h, o) of a room free to lie along x (o = 1) or y (o = 0)."""
+    o = model.addVar(f"o_{room.id}", vtype="B")
+    w = model.addVar(f"w_{room.id}", lb=sizes.lo_short + SAFETY, ub=sizes.hi_long - SAFETY)
+    h = model.addVar(f"h_{room.id}", lb=sizes.lo_short + SAFETY, ub=sizes.hi_long - SAFETY)
+    spread_lo = sizes.lo_long - sizes.lo_short
+    spread_hi = sizes.hi_long - sizes.hi_short
+    model.addCons(w >= sizes.lo_short + SAFETY + spread_lo * o)
+    model.addCons(w <= sizes.hi_short - SAFETY + spread_hi * o)
+    model.addCons(h >= sizes.lo_long + SAFETY - spread_lo * o)
+    model.addCons(h <= sizes.hi_long - SAFETY - spread_hi * o)
+    if not sizes.corridor:
+        big = sizes.max_ar * sizes.hi_long + 1.0
+        model.addCons(sizes.min_ar * h + SAFETY - w <= big * (1 - o))
+        model.addCons(w - sizes.max_ar * h + SAFETY <= big * (1 - o))
+        model.addCons(sizes.min_ar * w + SAFETY - h <= big * o)
+        model.addCons(h - sizes.max_ar * w + SAFETY <= big * o)
+    spread_target = sizes.target_long - sizes.target_short
+    target_w = sizes.target_short + spread_target * o
+    target_h = sizes.target_long - spread_target * o
+    return w, h, (target_w, target_h, o)
+
+
+def _add_start(model, start: _Outcome, options: dict[Pair, tuple[str, ...]]) -> None:
+    """Offer the previous round's solution to SCIP: it stays feasible in a wider model."""
+    solution = model.createSol()
+    by_name = {var.name: var for var in model.getVars()}
+    for var in by_name.values():
+        name = var.name
+        if name.startswith("z_"):
+            continue
+        if name in start.values:
+            model.setSolVal(solution, var, start.values[name])
+        elif name.startswith("o_"):
+            model.setSolVal(solution, var, float(start.orientations[name[2:]]))
+    for pair, allowed in options.items():
+        if len(allowed) == 1:
+            continue
+        picked = start.chosen.get(pair, allowed[0])
+        for direction in allowed:
+            var_name = f"z_{pair[0]}_{pair[1]}_{direction}"
+            model.setSolVal(solution, by_name[var_name], float(direction == picked))
+    model.addSol(solution, free=True)
+# ---------------------------------------------------------------------------------------
+# Checking rectangles against the spec's hard constraints
+# ---------------------------------------------------------------------------------------
+
+TOLERANCE = 1e-6
+
+
+def hard_violations(spec: Spec, rects: dict[str, Rect]) -> list[str]:
+    """Every hard constraint of the spec the rectangles break, in words (empty: feasible).
+
+    Mirrors the verifier's rules so construction can judge its own candidates cheaply;
+    `check_start` additionally runs the project's verifier when it is available.
+    """
+    tol = TOLERANCE
+    problems: list[str] = []
+    boundary = spec.boundary
+    assert boundary is not None
+    walldim = spec.settings.walldim
+    for room in spec.rooms:
+        if room.id not in rects:
+            problems.append(f"{room.id}: not placed")
+            continue
+        x, y, w, h = rects[room.id]
+        if x < -tol or y < -tol or x + w > boundary.w + tol or y + h > boundary.h + tol:
+            problems.append(f"{room.id}: outside the boundary")
+        sizes = RoomSizes.of(room)
+        w_lo, w_hi, h_lo, h_hi = sizes.bounds(w >= h)
+        if not (w_lo - tol <= w <= w_hi + tol and h_lo - tol <= h <= h_hi + tol):
+            problems.append(f"{room.id}: size {w:.3f} x {h:.3f} out of bounds")
+        if not room.is_corridor:
+            ratio = max(w, h) / min(w, h)
+            if not room.min_ar - tol <= ratio <= room.max_ar + tol:
+                problems.append(f"{room.id}: aspect ratio {ratio:.3f} out of bounds")
+        if room.on_boundary and not (
+            x <= tol or y <= tol or x + w >= boundary.w - tol or y + h >= boundary.h - tol
+        ):
+            problems.append(f"{room.id}: not on the boundary")
+    if problems:
+        return problems
+    things = [(room.id, rects[room.id]) for room in spec.rooms] + [
+        (ob.id, (ob.x, ob.y, ob.w, ob.h)) for ob in boundary.obstacles
+    ]
+    for i, (a, ra) in enumerate(things):
+        for b, rb in things[i + 1:]:
+            sep_x, sep_y = _separations(ra, rb)
+            if max(sep_x, sep_y) < walldim - tol:
+                problems.append(f"{a} and {b} overlap or lack a wall between them")
+    door_factor = spec.settings.door_utilization
+    for adj in spec.adjacencies:
+        sep_x, sep_y = _separations(rects[adj.a], rects[adj.b])
+        need = adj.door / door_factor - tol
+        touching = (abs(sep_x - walldim) <= tol and -sep_y >= need) or (
+            abs(sep_y - walldim) <= tol and -sep_x >= need
+        )
+        if not touching:
+            problems.append(f"{adj.a} and {adj.b} share no wall of {adj.door:.2f} m")
+    for position in spec.positions:
+        if not _covers(rects[position.room], position.x, position.y):
+            problems.append(f"{position.room}: does not cover its position")
+    for connection in spec.connections:
+        rect = rects[connection.room]
+        if not (_covers(rect, connection.x1, connection.y1)
+                and _covers(rect, connection.x2, connection.y2)):
+            problems.append(f"{connection.room}: does not cover its connection")
+    margin = spec.settings.cluster_margin
+    for cluster in spec.clusters:
+        lo_x = lo_y = -math.inf
+        hi_x = hi_y = math.inf
+        for member in cluster.members:
+            x, y, w, h = rects[member.room]
+            lo_x, hi_x = max(lo_x, x - margin - member.x), min(hi_x, x + w + margin - member.x)
+            lo_y, hi_y = max(lo_y, y - margin - member.y), min(hi_y, y + h + margin - member.y)
+        if lo_x > hi_x + tol or lo_y > hi_y + tol:
+            problems.append(f"cluster {cluster.id}: members moved apart beyond the margin")
+    return problems
+
+
+def _covers(rect: Rect, px: float, py: float) -> bool:
+    x, y, w, h = rect
+    return x - TOLERANCE <= px <= x + w + TOLERANCE and y - TOLERANCE <= py <= y + h + TOLERANCE
+
+
+def rects_to_layout(spec: Spec, rects: dict[str, Rect]):
+    """A Layout (with portals) of the rectangles, for the verifier and the emitters."""
+    # the compiler's conversion, so a start is judged exactly as a compiled layout is
+    return layout_from_rects(spec, rects)
+
+
+def check_start(spec: Spec, rects: dict[str, Rect]) -> list[str]:
+    """Violations of the rectangles: our own check, then the project's verifier."""
+    problems = hard_violations(spec, rects)
+    if problems:
+        return problems
+    from layoutdsl.layout.verify import verify
+
+    return [violation.message for violation in verify(spec, rects_to_layout(spec, rects))]
+
+
+# ---------------------------------------------------------------------------------------
+# Seed geometries
+# ---------------------------------------------------------------------------------------
+
+
+def hint_geometry(spec: Spec, shrink: bool | float = True) -> dict[str, Rect] | None:
+    """The hints as rectangles, or (`shrink`) each shrunk to its target size in its centre.
+
+    An imported room's hint is its original bounding box; the target is that box scaled by
+    sqrt(polygon / box area). Measured on the 24 real plans, the boxes themselves are the
+    better seed (all 24 repaired, median 0.1 s); the shrunk ones are the fallback.
+    None unless every room has a hint.
+    """
+    hints = {hint.room: hint for hint in spec.hints}
+    if any(room.id not in hints for room in spec.rooms):
+        return None
+    geometry: dict[str, Rect] = {}
+    for room in spec.rooms:
+        hint = hints[room.id]
+        sizes = RoomSizes.of(room)
+        w, h = sizes.targets(hint.w >= hint.h)
+        fill = (w * h) / max(hint.w * hint.h, 1e-9)
+        if shrink is False or (shrink is not True and fill >= shrink):
+            w, h = hint.w, hint.h
+        cx, cy = hint.x + hint.w / 2, hint.y + hint.h / 2
+        geometry[room.id] = (cx - w / 2, cy - h / 2, w, h)
+    return geometry
+
+
+DEFAULT_SECONDS = 60.0
+
+MAX_STALLS = 3
+"""Rounds without progress after which a seed geometry is given up."""
+
+FREE_RADII = (1.0, 3.0, 6.0, 12.0, 25.0)
+"""Metres around a conflict within which pairs get their relation freed, round by round."""
+
+
+def _repair(
+    problem: _Problem,
+    geometry: dict[str, Rect],
+    deadline: float,
+    seed: int,
+    max_stalls: int = MAX_STALLS,
+    free_defects: bool = False,
+) -> dict[str, Rect] | None:
+    """Relations from the geometry, repaired round by round until they admit a layout.
+
+    Each round solves the elastic model; the pairs it had to stretch, and the pairs close to
+    their rooms, get more freedom (one axis -> either axis -> any direction) for the next
+    round, which starts from the previous solution. Zero stretch ends the repair; a final
+    LP with those relations then brings the sizes towards their targets.
+    """
+    options: dict[Pair, tuple[str, ...]] = {
+        pair: problem.axis_choices(geometry, pair)[:1] for pair in problem.pairs
+    }
+    if free_defects:
+        # where the geometry is wrong (rooms overlap, or a door's rooms do not touch) its
+        # relation is a guess: let the first round choose the axis (measured on generated
+        # geometries: fewer stalled rounds)
+        for pair in problem.pairs:
+            distance = problem.distance(geometry, pair)
+            wall = problem.walls.get(frozenset(pair))
+            if distance < problem.walldim - 1e-6 or (wall and distance > problem.walldim + 1e-3):
+                options[pair] = _widen(problem, geometry, pair, options[pair])
+    start: _Outcome | None = None
+    neighbours: dict[str, set[str]] = {}
+    for adj in problem.spec.adjacencies:
+        neighbours.setdefault(adj.a, set()).add(adj.b)
+        neighbours.setdefault(adj.b, set()).add(adj.a)
+    best_total = math.inf
+    stalls = 0
+    orientations = {
+        room_id: rect[2] >= rect[3] for room_id, rect in geometry.items()
+    }
+    turnable: set[str] = set()
+    for round_index in range(len(FREE_RADII) * 3):
+        left = deadline - time.monotonic()
+        if left <= 0.05:
+            return None
+        outcome = _solve_model(problem, geometry, options, mode="repair",
+                               seconds=min(left, 1.0 + 0.25 * left), seed=seed,
+                               orientations=orientations, turnable=frozenset(turnable),
+                               start=start, feasibility_emphasis=stalls > 0)
+        if outcome is None:
+            return None
+        if not outcome.stretched:
+            final_options = {pair: (direction,) for pair, direction in outcome.chosen.items()}
+            final = _solve_model(problem, geometry, final_options, mode="final",
+                                 seconds=max(0.5, min(5.0, deadline - time.monotonic())),
+                                 seed=seed, orientations=outcome.orientations)
+            for rects in (final.rects if final else None, outcome.rects):
+                if rects is None:
+                    continue
+                problems = check_start(problem.spec, rects)
+                if not problems:
+                    return rects
+                _debug(f"    rejected: {problems[:3]}")
+            return None
+        _debug(f"  round {round_index}: {len(outcome.stretched)} stretched, "
+               f"total {sum(outcome.stretched.values()):.2f} m: "
+               + ", ".join(f"{a}-{b} {options[(a, b)]} {v:.2f}"
+                           for (a, b), v in sorted(outcome.stretched.items())))
+        total = sum(outcome.stretched.values())
+        stalled = total > 0.95 * best_total
+        best_total = min(best_total, total)
+        if stalled:
+            stalls += 1
+            if stalls > max_stalls:
+                # a local minimum of the stretch: another seed geometry does better than
+                # ever wider (and slower) MIPs around this one
+                return None
+        radius = FREE_RADII[min(round_index + stalls, len(FREE_RADII) - 1)]
+        blamed = {thing for pair in outcome.stretched for thing in pair}
+        if stalls:
+            # no progress: the blamed rooms may need to turn, and the conflict's cause may
+            # lie further out, so look a step further each time
+            turnable |= blamed & set(orientations)
+        for _ in range(stalls):
+            blamed |= {n for thing in blamed for n in neighbours.get(thing, ())}
+        orientations = dict(outcome.orientations)
+        for pair in outcome.stretched:
+            options[pair] = _widen(problem, geometry, pair, options[pair])
+        for pair in problem.pairs:
+            a, b = pair
+            if not (a in blamed or b in blamed):
+                continue
+            if len(options[pair]) == 1 and problem.distance(geometry, pair) <= radius:
+                options[pair] = _widen(problem, geometry, pair, options[pair])
+            elif stalls and a in blamed and b in blamed:
+                options[pair] = _widen(problem, geometry, pair, options[pair])
+        start = outcome
+    return None
+
+
+def _widen(problem: _Problem, geometry: dict[str, Rect], pair: Pair,
+           allowed: tuple[str, ...]) -> tuple[str, ...]:
+    """One more degree of freedom: one direction -> both axes -> all four directions."""
+    if len(allowed) == 1:
+        both = problem.axis_choices(geometry, pair)
+        return (allowed[0],) + tuple(d for d in both if d != allowed[0])
+    if len(allowed) == 2:
+        return allowed + tuple(d for d in DIRECTIONS if d not in allowed)
+    return allowed
+
+
+def construct_start(
+    spec: Spec,
+    *,
+    seed: int = 0,
+    deadline: float | None = None,
+    randomize: bool = False,
+    use_hints: bool = True,
+) -> dict[str, Rect] | None:
+    """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
+
+    `deadline` is a `time.monotonic()` instant (default: 60 s from now). Seed geometries are
+    tried in turn, each with a share of the time left: the hints' boxes and the hints shrunk
+    to the target sizes (when the spec has hints and `use_hints`), then geometries grown
+    from the room graph (layoutdsl.compile.generate), then spring embeddings. `randomize` (hint-based
+    variants) perturbs the hints from `seed`; the graph geometries are always drawn from it.
+    """
+    if spec.boundary is None or not spec.rooms:
+        return None
+    if deadline is None:
+        deadline = time.monotonic() + DEFAULT_SECONDS
+    problem = _Problem.of(spec)
+    rng = random.Random(seed)
+    candidates = list(_seed_geometries(spec, rng, randomize, use_hints))
+    for index, (kind, make_geometry) in enumerate(candidates):
+        left = deadline - time.monotonic()
+        if left <= 0.05:
+            return None
+        geometry = _cover_points(spec, make_geometry())
+        # a hint geometry is the likeliest and is worth a long repair; graph geometries are
+        # many short tries (measured: a fresh draw beats a long repair of a stuck one)
+        if index == len(candidates) - 1:
+            share = left
+        elif kind == "hints":
+            share = 0.5 * left
+        elif kind == "generated":
+            share = min(left, max(GENERATED_TRY_SECONDS, GENERATED_TRY_SHARE * left))
+        else:
+            share = min(left, max(GRAPH_TRY_SECONDS, 0.15 * left))
+        _debug(f"geometry {index} ({kind}): {share:.1f}s")
+        # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
+        rects = _repair(problem, geometry, time.monotonic() + share, seed,
+                        max_stalls=MAX_STALLS if kind == "hints" else GRAPH_MAX_STALLS,
+                        free_defects=kind == "generated")
+        if rects is not None:
+            return rects
+    return None
+
+
+SHRINK_ORDER: tuple[bool | float, ...] = (False, True)
+"""Hint geometries in the order tried: the original boxes, then boxes shrunk to target."""
+
+
+GRAPH_MAX_STALLS = 1
+"""Rounds without progress after which a generated or spring geometry is given up."""
+
+GENERATED_TRIES = 24
+"""Greedy contact placements (layoutdsl.compile.generate) tried after the hint geometries."""
+
+GENERATED_TRY_SECONDS = 2.5
+"""Least time the repair of one generated geometry gets."""
+
+GENERATED_TRY_SHARE = 0.1
+"""Share of the time left the repair of one generated geometry gets, when that is more."""
+
+GRAPH_TRIES = 12
+"""Spring-embedded seed geometries, tried in turn with the generated ones."""
+
+GRAPH_TRY_SECONDS = 1.5
+"""Least time a graph geometry's repair gets (more when much time is left)."""
+
+
+def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints: bool = True):
+    """(kind, maker) of each seed geometry to try, best first; each is built when needed."""
+    has_hints = use_hints and hint_geometry(spec) is not None
+    makers = []
+    if has_hints and randomize:
+        makers.append(("hints", lambda: perturbed_hint_geometry(spec, rng)))
+    if has_hints:
+        # for variants too: a variant that cannot keep a perturbed geometry still differs
+        # by its seed and its entrance, and the plain hints repair far more reliably than
+        # graph geometries on large plans
+        makers += [("hints", lambda shrink=shrink: hint_geometry(spec, shrink=shrink))
+                   for shrink in SHRINK_ORDER]
+    # one generator shared by the makers, called in order: the same seed, the same sequence
+    # the two graph families alternate: measured on the real plans (machine shared), each
+    # finds layouts the other misses (greedy placements: large plans; spring embeddings:
+    # some 28-36-room plans with cycles), so neither may starve the other of time
+    for index in range(max(GENERATED_TRIES, GRAPH_TRIES)):
+        if index < GENERATED_TRIES:
+            makers.append(("generated", lambda: generate_geometry(spec, rng)))
+        if index < GRAPH_TRIES:
+            makers.append(("graph", lambda: construct_geometry(spec, rng)))
+    return makers
+
+
+def _cover_points(spec: Spec, geometry: dict[str, Rect]) -> dict[str, Rect]:
+    """Move each room with a position (or connection) so its seed rectangle covers the point.
+
+    The relations then already put the room where the hard constraint wants it, instead of
+    leaving the repair to discover that the whole neighbourhood must move.
+    """
+    points: dict[str, tuple[float, float]] = {p.room: (p.x, p.y) for p in spec.positions}
+    for c in spec.connections:
+        points.setdefault(c.room, ((c.x1 + c.x2) / 2, (c.y1 + c.y2) / 2))
+    if not points:
+        return geometry
+    moved = dict(geometry)
+    for room_id, (px, py) in points.items():
+        if room_id in moved:
+            x, y, w, h = moved[room_id]
+            moved[room_id] = (px - w / 2, py - h / 2, w, h)
+    return moved
+
+
+PERTURBATION = 0.25
+"""Largest move of a hint box in a variant's seed geometry, as a fraction of its size."""
+
+
+def perturbed_hint_geometry(spec: Spec, rng: random.Random) -> dict[str, Rect]:
+    """The hints' boxes, each moved by up to PERTURBATION of its size: a variant's seed.
+
+    Rooms that were side by side may now be one above the other, so the repair settles on
+    other relations and the variant differs, while the plan's overall shape stays.
+    Measured on school_hendersonhighschool (62 rooms): moves of half a room size left the
+    repair stuck for every seed; a quarter repairs in < 1 s for most seeds.
+    """
+    geometry = hint_geometry(spec, shrink=False)
+    assert geometry is not None
+    moved: dict[str, Rect] = {}
+    for room_id, (x, y, w, h) in geometry.items():
+        dx = rng.uniform(-PERTURBATION, PERTURBATION) * w
+        dy = rng.uniform(-PERTURBATION, PERTURBATION) * h
+        moved[room_id] = (x + dx, y + dy, w, h)
+    return moved
+
+
+def construct_geometry(spec: Spec, rng: random.Random) -> dict[str, Rect]:
+    """A seed geometry grown from the room graph alone (no hints needed).
+
+    A spring embedding of the adjacency graph (seeded from `rng`) spread over the boundary,
+    each room a rectangle of its target size at its node, lying along its longer target
+    side or, with probability 1/2, turned. Adjacent rooms end up near each other, which is
+    what the relations need; the repair fixes the rest.
+    """
+    import networkx as nx
+
+    boundary = spec.boundary
+    assert boundary is not None
+    graph = nx.Graph()
+    graph.add_nodes_from(room.id for room in spec.rooms)
+    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
+    fixed_points = {p.room: (p.x, p.y) for p in spec.positions}
+    for c in spec.connections:
+        fixed_points.setdefault(c.room, ((c.x1 + c.x2) / 2, (c.y1 + c.y2) / 2))
+    positions = nx.spring_layout(graph, seed=rng.randrange(2**31), iterations=100)
+    xs = [p[0] for p in positions.values()]
+    ys = [p[1] for p in positions.values()]
+    span_x = (max(xs) - min(xs)) or 1.0
+    span_y = (max(ys) - min(ys)) or 1.0
+    geometry: dict[str, Rect] = {}
+    for room in spec.rooms:
+        sizes = RoomSizes.of(room)
+        turned = rng.random() < 0.5
+        w, h = sizes.targets(not turned)
+        if room.id in fixed_points:
+            cx, cy = fixed_points[room.id]
+        else:
+            px, py = positions[room.id]
+            cx = w / 2 + (px - min(xs)) / span_x * max(0.0, boundary.w - w)
+            cy = h / 2 + (py - min(ys)) / span_y * max(0.0, boundary.h - h)
+        geometry[room.id] = (cx - w / 2, cy - h / 2, w, h)
+    return spread_apart(geometry, boundary.w, boundary.h, spec.settings.walldim,
+                        fixed=set(fixed_points))
+
+
+def spread_apart(
+    geometry: dict[str, Rect],
+    width: float,
+    height: float,
+    walldim: float,
+    *,
+    fixed: set[str] = frozenset(),
+    iterations: int = 300,
+) -> dict[str, Rect]:
+    """Push overlapping rectangles apart (each along its shallower overlap), inside the box.
+
+    A spring embedding ignores the rooms' sizes, so its rectangles pile up; relations read
+    off such a pile are mostly arbitrary. A few hundred rounds of pairwise pushes (numpy,
+    O(n^2) per round: fine for a few hundred rooms) leave a geometry whose relations are
+    nearly right, so the repair has little left to do. Rooms in `fixed` do not move.
+    """
+    import numpy as np
+
+    ids = list(geometry)
+    if len(ids) < 2:
+        return dict(geometry)
+    rects = np.array([geometry[i] for i in ids], dtype=float)
+    half_w, half_h = rects[:, 2] / 2, rects[:, 3] / 2
+    cx, cy = rects[:, 0] + half_w, rects[:, 1] + half_h
+    movable = np.array([0.0 if i in fixed else 1.0 for i in ids])
+    need_x = half_w[:, None] + half_w[None, :] + walldim
+    need_y = half_h[:, None] + half_h[None, :] + walldim
+    upper = np.triu(np.ones((len(ids), len(ids)), dtype=bool), 1)
+    for _ in range(iterations):
+        dx = cx[None, :] - cx[:, None]
+        dy = cy[None, :] - cy[:, None]
+        over_x = need_x - np.abs(dx)
+        over_y = need_y - np.abs(dy)
+        clash = (over_x > 0) & (over_y > 0) & upper
+        if not clash.any():
+            break
+        along_x = clash & (over_x <= over_y)
+        along_y = clash & ~along_x
+        # ties (same centre) are pushed by index order, so the result stays deterministic
+        sign_x = np.where(dx >= 0, 1.0, -1.0)
+        sign_y = np.where(dy >= 0, 1.0, -1.0)
+        push_x = np.where(along_x, over_x * sign_x / 2, 0.0)
+        push_y = np.where(along_y, over_y * sign_y / 2, 0.0)
+        cx += (push_x.sum(axis=0) - push_x.sum(axis=1)) * movable * 0.5
+        cy += (push_y.sum(axis=0) - push_y.sum(axis=1)) * movable * 0.5
+        cx = np.clip(cx, half_w, np.maximum(half_w, width - half_w))
+        cy = np.clip(cy, half_h, np.maximum(half_h, height - half_h))
+    return {
+        room_id: (float(cx[k] - half_w[k]), float(cy[k] - half_h[k]),
+                  float(rects[k, 2]), float(rects[k, 3]))
+        for k, room_id in enumerate(ids)
+    }

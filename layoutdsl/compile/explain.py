@@ -1,0 +1,340 @@
+"""Why there is no layout: E9xx diagnostics, and a deletion filter for infeasible specs.
+
+When SCIP proves a spec infeasible, we look for a small set of spec lines whose constraints
+conflict: each line that constrains the geometry (an adjacency, a position, a connection, a
+cluster, an obstacle, an `onB` flag, a room's size bounds) is a group; a deletion filter
+drops one group at a time and re-solves a feasibility-only model (objective dropped, short
+limit). A group whose removal leaves the spec infeasible is not needed for the conflict and
+stays dropped; one whose removal makes it feasible is part of the conflict. Only proven
+infeasibility drops a group, so the lines reported always conflict; a re-solve that runs
+out of time keeps its group, which can only make the set larger, never wrong.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, replace
+
+from layoutdsl.syntax.ast import Room, Spec
+from layoutdsl.diagnostics import Diagnostic, Severity, register
+from layoutdsl.diagnostics.source import Span
+
+E901 = register(
+    "E901",
+    Severity.ERROR,
+    "conflicting-constraints",
+    "Marks each spec line of a set of constraints that no layout can satisfy together; "
+    "the set is small: without any one of these lines a layout exists (as far as the "
+    "solver could tell within its limit).",
+    "The compiler proved that no layout meets all hard constraints, so it wrote nothing. "
+    "The conflict usually involves only a few lines, and changing any one of them (a larger "
+    "maximum size, a position moved, an adjacency removed) removes it.",
+    "rooms\nA 2 3 2.5 2 3 2.5 1 1.5 R OFFICE\nB 2 3 2.5 2 3 2.5 1 1.5 R OFFICE\n\n"
+    "boundary\n20 10\n\nadjacencies\nA B 0.9 e\n\npositions\nA 1 1\nB 18 8\n"
+    "# A and B must touch, but their positions are 17 m apart and each is at most 3 m wide",
+)
+E902 = register(
+    "E902",
+    Severity.ERROR,
+    "no-layout-in-time",
+    "Reports that the solver stopped at its time limit (or node or solution limit) before "
+    "it found any layout.",
+    "The spec may well be feasible, but no layout was found in time, so nothing was written. "
+    "Larger specs, tight boundaries, narrow size ranges and cycles of adjacent rooms make the "
+    "first layout hard to find.",
+    "settings\ntime_limit 0.5\n# a 40-room spec with a boundary barely larger than the rooms",
+)
+E903 = register(
+    "E903",
+    Severity.ERROR,
+    "verification-failed",
+    "Reports a solved layout that the independent verifier rejected, with its violations.",
+    "A layout that breaks a hard constraint of the spec is never written: it would give the "
+    "simulation a building the spec did not ask for. This points at a solver tolerance or a "
+    "bug in layoutdsl; please report it with the spec.",
+    "# any spec; the verifier found two rooms 0.19 m apart with walldim 0.2",
+)
+E904 = register(
+    "E904",
+    Severity.ERROR,
+    "infeasible-spec",
+    "Reports that the solver proved the spec infeasible when no smaller set of conflicting "
+    "lines could be isolated within the time limit.",
+    "No layout satisfies all hard constraints, so nothing was written.",
+    "rooms\nA 5 6 5.5 5 6 5.5 1 1.2 R HALL\nB 5 6 5.5 5 6 5.5 1 1.2 R HALL\n\n"
+    "boundary\n10.5 6\n# two rooms at least 5 m wide and 0.2 m of wall do not fit in 10.5 m",
+)
+
+_FALLBACK_SPAN = Span(1, 1, 1, 2)
+
+
+def _span(node_span: Span | None) -> Span:
+    return node_span if node_span is not None else _FALLBACK_SPAN
+
+
+def _first_line_span(spec: Spec) -> Span:
+    if spec.boundary is not None and spec.boundary.span is not None:
+        return spec.boundary.span
+    return _FALLBACK_SPAN
+
+
+def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagnostic:
+    """E902: the solver stopped (time, node or solution limit) with no layout; says what to try."""
+    if status == "node_limit" and options.node_limit is not None:
+        limit = f"the node limit of {options.node_limit}"
+    elif status == "solution_limit" and options.solution_limit is not None:
+        limit = f"the solution limit of {options.solution_limit}"
+    else:
+        limit = f"the time limit of {options.time_limit:g} s"
+    return Diagnostic(
+        code=E902,
+        message=f"no layout found within {limit}",
+        filename=spec.path,
+        span=_first_line_span(spec),
+        label="no layout for this boundary found",
+        help=(
+            "try a longer limit (`--time-limit`), a larger boundary, wider size ranges "
+            "(a larger variance when importing), `--emphasis feasibility`, or the cycle "
+            "decomposition (`--strategy cycles`)"
+        ),
+    )
+
+
+def restate_limit(diagnostics: list[Diagnostic], spec: Spec, options, status: str = "time_limit") -> list[Diagnostic]:
+    """The diagnostics with every E902 saying `options`' limit.
+
+    Strategies that split the time (cycle decomposition, the fallback to it) compile parts of
+    the run under a share of the limit; the user asked for the whole one and must read that.
+    """
+    return [no_layout_in_time(spec, options, status) if d.code == E902 else d for d in diagnostics]
+
+
+def verification_failed(spec: Spec, violations) -> Diagnostic:
+    """E903: the solved layout broke hard constraints; lists the violations."""
+    notes = tuple(v.message for v in violations[:20])
+    if len(violations) > 20:
+        notes += (f"... and {len(violations) - 20} more",)
+    return Diagnostic(
+        code=E903,
+        message=f"the solved layout failed verification ({len(violations)} violation"
+        f"{'s' if len(violations) != 1 else ''}); nothing was written",
+        filename=spec.path,
+        span=_first_line_span(spec),
+        label="layout for this spec",
+        help="this is a bug or a solver tolerance problem in layoutdsl; please report it with the spec",
+        notes=notes,
+    )
+
+
+def infeasible_without_explanation(spec: Spec, *, searched: bool = False) -> Diagnostic:
+    """E904: proven infeasible, but no small conflicting set was isolated (or none was sought)."""
+    if searched:
+        hint = "a longer `--time-limit` gives the compiler time to isolate the conflicting lines"
+    else:
+        hint = "run without `--no-explain` to find the conflicting lines"
+    return Diagnostic(
+        code=E904,
+        message="no layout satisfies every hard constraint of this spec",
+        filename=spec.path,
+        span=_first_line_span(spec),
+        label="the rooms do not fit this boundary with these constraints",
+        help=f"try a larger boundary or wider size ranges; {hint}",
+    )
+
+
+# ----- groups: one spec line each, and how to drop it -----
+
+@dataclass(frozen=True, slots=True)
+class Group:
+    """One spec line that constrains the geometry, and the spec without its constraint."""
+
+    kind: str
+    """'adjacency', 'position', 'connection', 'cluster', 'obstacle', 'onB', 'size'."""
+    key: object
+    span: Span | None
+    rooms: tuple[str, ...]
+    describe: str
+
+
+def constraint_groups(spec: Spec) -> list[Group]:
+    """Every droppable constraint line of the spec, in a fixed order."""
+    groups: list[Group] = []
+    for index, adj in enumerate(spec.adjacencies):
+        need = adj.door / spec.settings.door_utilization
+        groups.append(Group("adjacency", index, adj.span, (adj.a, adj.b),
+                            f"rooms `{adj.a}` and `{adj.b}` must share {need:g} m of wall"))
+    for index, pos in enumerate(spec.positions):
+        groups.append(Group("position", index, pos.span, (pos.room,),
+                            f"room `{pos.room}` must cover the point ({pos.x:g}, {pos.y:g})"))
+    for index, con in enumerate(spec.connections):
+        groups.append(Group("connection", index, con.span, (con.room,),
+                            f"room `{con.room}` must cover ({con.x1:g}, {con.y1:g}) and ({con.x2:g}, {con.y2:g})"))
+    for index, cl in enumerate(spec.clusters):
+        members = tuple(m.room for m in cl.members)
+        groups.append(Group("cluster", index, cl.span, members,
+                            f"cluster `{cl.id}` keeps {', '.join(f'`{m}`' for m in members)} in place"))
+    if spec.boundary is not None:
+        for index, ob in enumerate(spec.boundary.obstacles):
+            groups.append(Group("obstacle", index, ob.span, (),
+                                f"obstacle `{ob.id}` blocks {ob.w:g} x {ob.h:g} m at ({ob.x:g}, {ob.y:g})"))
+    for room in spec.rooms:
+        if room.on_boundary:
+            span = room.spans.get("on_boundary", room.span)
+            groups.append(Group("onB", room.id, span, (room.id,),
+                                f"room `{room.id}` must touch the boundary"))
+    for room in spec.rooms:
+        groups.append(Group("size", room.id, room.span, (room.id,), _size_text(room)))
+    return groups
+
+
+def _size_text(room: Room) -> str:
+    text = (f"room `{room.id}` is between {room.min_w:g} x {room.min_h:g} and "
+            f"{room.max_w:g} x {room.max_h:g} m")
+    if not room.is_corridor:
+        text += f", aspect ratio {room.min_ar:g} to {room.max_ar:g}"
+    return text
+
+
+def _relaxed_room(room: Room, spec: Spec) -> Room:
+    """The room with its size bounds and aspect ratio dropped (any size inside the boundary)."""
+    assert spec.boundary is not None
+    largest = max(spec.boundary.w, spec.boundary.h)
+    return replace(room, min_w=0.0, min_h=0.0, max_w=largest, max_h=largest,
+                   target_w=min(room.target_w, largest), target_h=min(room.target_h, largest),
+                   rtype="C")  # corridors carry no aspect-ratio constraint (5.6)
+
+
+def spec_without(spec: Spec, dropped: set[tuple[str, object]]) -> Spec:
+    """The spec with the constraints of the dropped groups removed."""
+    def keep(kind: str, key: object) -> bool:
+        return (kind, key) not in dropped
+
+    rooms = []
+    for room in spec.rooms:
+        if not keep("size", room.id):
+            room = _relaxed_room(room, spec)
+        if not keep("onB", room.id):
+            room = replace(room, on_boundary=False)
+        rooms.append(room)
+    boundary = spec.boundary
+    if boundary is not None:
+        boundary = replace(boundary, obstacles=tuple(
+            ob for i, ob in enumerate(boundary.obstacles) if keep("obstacle", i)))
+    return replace(
+        spec,
+        rooms=tuple(rooms),
+        boundary=boundary,
+        adjacencies=tuple(a for i, a in enumerate(spec.adjacencies) if keep("adjacency", i)),
+        positions=tuple(p for i, p in enumerate(spec.positions) if keep("position", i)),
+        connections=tuple(c for i, c in enumerate(spec.connections) if keep("connection", i)),
+        clusters=tuple(c for i, c in enumerate(spec.clusters) if keep("cluster", i)),
+    )
+
+
+FeasibilityTest = Callable[[Spec, float], "bool | None"]
+"""test(spec, seconds) -> True feasible, False proven infeasible, None unknown (time out)."""
+
+
+def scip_feasibility(spec: Spec, seconds: float, *, seed: int = 0) -> bool | None:
+    """Feasibility-only SCIP solve (objective dropped, stop at the first layout)."""
+    from layoutdsl.model import build_model
+    from layoutdsl.solve import SolveOptions, solve
+
+    model = build_model(spec)
+    outcome = solve(model, SolveOptions(time_limit=seconds, seed=seed, emphasis="feasibility", quiet=True),
+                    feasibility_only=True)
+    if outcome.has_solution:
+        return True
+    if outcome.status == "infeasible":
+        return False
+    return None
+
+
+def feasibility(spec: Spec, seconds: float, *, seed: int = 0) -> bool | None:
+    """SCIP for a third of the time (it proves most conflicts infeasible in presolve), then the
+    first-feasible construction (layoutdsl.compile.construct) for the rest, since SCIP
+    alone often finds no layout of ten rooms or more in seconds even when one exists."""
+    began = time.monotonic()
+    result = scip_feasibility(spec, seconds / 3, seed=seed)
+    if result is not None:
+        return result
+    from layoutdsl.compile.construct import construct_start
+
+    left = seconds - (time.monotonic() - began)
+    if left <= 0.1:
+        return None
+    rects = construct_start(spec, seed=seed, deadline=time.monotonic() + left)
+    if rects is None:
+        return None
+    from layoutdsl.layout.geometry import layout_from_rects
+    from layoutdsl.layout.verify import verify
+
+    # only a layout the independent verifier accepts proves feasibility
+    return True if not verify(spec, layout_from_rects(spec, rects)) else None
+
+
+def conflicting_groups(spec: Spec, *, deadline: float, test: FeasibilityTest | None = None,
+                       per_test_seconds: float = 3.0) -> list[Group] | None:
+    """A small set of groups that conflict (deletion filter), or None if out of time.
+
+    Assumes `spec` is infeasible. Groups are tried in order: lines first, then room sizes,
+    so a conflict is blamed on the lines a person wrote rather than on size bounds when both
+    would explain it.
+    """
+    test = test or feasibility
+    groups = constraint_groups(spec)
+    dropped: set[tuple[str, object]] = set()
+    kept: list[Group] = []
+    for group in groups:
+        left = deadline - time.monotonic()
+        if left <= 0.2:
+            return None
+        trial = dropped | {(group.kind, group.key)}
+        result = test(spec_without(spec, trial), min(per_test_seconds, left))
+        if result is False:
+            dropped = trial  # still infeasible without it: not needed for the conflict
+        else:
+            kept.append(group)
+    return kept
+
+
+def explain_infeasibility(spec: Spec, options, *, test: FeasibilityTest | None = None) -> list[Diagnostic]:
+    """E901 per conflicting line (deletion filter within options.time_limit), else one E904."""
+    budget = max(5.0, options.time_limit)
+    deadline = time.monotonic() + budget
+    groups = conflicting_groups(spec, deadline=deadline, test=test)
+    if not groups:
+        return [infeasible_without_explanation(spec, searched=True)]
+    assert spec.boundary is not None
+    setting = (f"inside the {spec.boundary.w:g} x {spec.boundary.h:g} m boundary, rooms "
+               f"{spec.settings.walldim:g} m (one wall) apart")
+    others = {g: [o for o in groups if o is not g] for g in groups}
+    diagnostics = []
+    for group in groups:
+        partners = "; ".join(o.describe for o in others[group][:4])
+        if len(others[group]) > 4:
+            partners += f"; and {len(others[group]) - 4} more"
+        diagnostics.append(Diagnostic(
+            code=E901,
+            message=f"{group.describe}, which conflicts with {len(others[group])} other line"
+            f"{'s' if len(others[group]) != 1 else ''}",
+            filename=spec.path,
+            span=_span(group.span),
+            label="part of a conflict",
+            help=_help_for(group),
+            notes=((f"conflicts with: {partners}",) if partners else ()) + (setting,),
+        ))
+    return diagnostics
+
+
+def _help_for(group: Group) -> str:
+    return {
+        "adjacency": "remove this adjacency or move the rooms' positions closer together",
+        "position": "move this point, or drop it so the room can move",
+        "connection": "move these points, or drop the connection",
+        "cluster": "enlarge `cluster_margin` or move the cluster's points",
+        "obstacle": "move or shrink the obstacle",
+        "onB": "drop `onB` from this room",
+        "size": "widen this room's size bounds or aspect-ratio range",
+    }[group.kind]

@@ -1,0 +1,276 @@
+"""The compile pipeline: checked spec -> (start) -> model -> SCIP -> verified Layout.
+
+Stages, each callable alone: a first feasible geometry (`start`, or a `start_provider` such
+as the construction of issue 6), `model.build_model`, `model.warm_start_from_rects`,
+`solve.polish` (best geometry for the start's relations), `solve.improve_by_neighbourhoods`
+(large-neighbourhood search), `solve.solve` (branch-and-bound over the whole model, warm
+started), `layout_from_rects`, `verify.verify`. A layout that fails verification is never
+returned; infeasibility and time-outs become E9xx diagnostics (explain.py).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field, replace
+
+
+from layoutdsl.compile import explain
+from layoutdsl.compile.construct import construct_start
+from layoutdsl.syntax.ast import Spec
+from layoutdsl.diagnostics import Diagnostic
+from layoutdsl.layout import Layout, SolveInfo, round_layout_number
+from layoutdsl.layout.geometry import layout_from_rects
+from layoutdsl.model import (
+    THESIS_AS_WRITTEN,
+    build_model,
+    objective_of_rects,
+    rects_from_model,
+    warm_start_from_rects,
+)
+from layoutdsl.solve import (
+    ProgressCallback,
+    SolveOptions,
+    SolveOutcome,
+    improve_by_neighbourhoods,
+    polish,
+    relative_gap,
+    solve,
+    stderr_progress,
+)
+from layoutdsl.layout.geometry import Rect
+from layoutdsl.layout.verify import verify
+
+StartProvider = Callable[[Spec, SolveOptions], "dict[str, Rect] | None"]
+"""start_provider(spec, options) -> rectangles satisfying every hard constraint, or None.
+It must return within options.time_limit seconds (its share of the compile's limit)."""
+
+Fallback = Callable[[Spec, SolveOptions, "ProgressCallback | None"], "CompileResult"]
+"""fallback(spec, options, progress) -> the result of another strategy, in options.time_limit."""
+
+START_SHARE = 0.5
+"""Share of the time limit a start provider may use; SCIP gets the rest and any time left."""
+
+PROBE_SHARE = 0.05
+"""Share of the time limit (at most 5 s) for the presolve-only infeasibility probe."""
+
+POLISH_SHARE = 0.1
+"""Share of the time limit for polishing a start with its relations fixed (solve.polish)."""
+
+LNS_SHARE = {True: 0.7, False: 0.9}
+"""Share of the time left after polishing for the neighbourhood search
+(solve.improve_by_neighbourhoods), for specs of at most / more than LNS_SMALL rooms;
+branch-and-bound over the whole model gets the rest. Measured: on 17 rooms branch-and-bound
+still closes the gap (school_fig42: 1.6 % in 12 s); on 76-105 rooms it improves nothing."""
+
+LNS_SMALL = 20
+
+LNS_SIZE = 4
+"""Rooms freed per neighbourhood; measured on school_fig42 (17 rooms, 10 s): 4 rooms reached
+29.1, 6 rooms 29.5, 8 rooms 32.0 from a polished start of 35.7."""
+
+
+@dataclass(slots=True)
+class CompileResult:
+    """What a compile produced: a verified layout, or diagnostics saying why not."""
+
+    layout: Layout | None
+    diagnostics: list[Diagnostic]
+    status: str
+    """A SolveInfo status when there is a layout; else 'infeasible', 'no_layout' (time limit
+    without one) or 'verify_failed'."""
+    timings: dict[str, float] = field(default_factory=dict)
+    """Seconds per stage: 'build', 'presolve', 'start', 'polish', 'neighbourhoods', 'solve',
+    'verify', 'explain', 'total'."""
+    outcome: SolveOutcome | None = None
+
+
+def default_start_provider(spec: Spec, options: SolveOptions) -> dict[str, Rect] | None:
+    """The first-feasible construction of issue 6 (layoutdsl.compile.construct)."""
+    return construct_start(spec, seed=options.seed, deadline=time.monotonic() + options.time_limit)
+
+
+def compile_from_start(
+    spec: Spec,
+    options: SolveOptions,
+    *,
+    start: Mapping[str, Rect] | None = None,
+    start_provider: StartProvider | None = None,
+    progress: ProgressCallback | None = None,
+    explain_infeasible: bool = True,
+    no_start_fallback: Fallback | None = None,
+) -> CompileResult:
+    """The strategies 'auto' and 'thesis': a verified Layout from a start polished by SCIP.
+
+    strategy 'thesis': the thesis' formulation as written, solved by SCIP from scratch.
+    strategy 'auto': a first feasible layout from `start`, else from `start_provider` (by
+    default the construction of issue 6), handed to SCIP as its start for polishing; without
+    a start, SCIP alone. The start itself is the answer if SCIP finds nothing better in time.
+    When no start is found, `no_start_fallback(spec, options_with_the_time_left, progress)`
+    gets the time left instead (the dispatcher passes cycle decomposition there).
+    """
+    began = time.monotonic()
+    deadline = began + options.time_limit
+    timings: dict[str, float] = {}
+    if progress is None and not options.quiet:
+        progress = stderr_progress
+    if progress is not None:
+        report = progress
+        # every stage reports seconds since the compile began, not since its own start
+
+        def progress(_elapsed: float, incumbent: float | None, gap: float | None) -> None:
+            report(time.monotonic() - began, incumbent, gap)
+    formulation = options.formulation
+    method = "scip"
+    rects_start: dict[str, Rect] | None = dict(start) if start is not None else None
+    if options.strategy == "thesis":
+        formulation = THESIS_AS_WRITTEN
+        rects_start = None
+    t0 = time.monotonic()
+    model = build_model(spec, formulation=formulation)
+    timings["build"] = time.monotonic() - t0
+    if options.strategy != "thesis" and rects_start is None:
+        # SCIP's presolve alone proves typical conflicts infeasible in milliseconds (about a
+        # second at 100 rooms); without this probe the construction would spend its whole
+        # share of the time limit on a spec that has no layout
+        t0 = time.monotonic()
+        probe = solve(model, replace(options, time_limit=max(0.5, min(5.0, PROBE_SHARE * options.time_limit)),
+                                     node_limit=0, solution_limit=None, emphasis="default", quiet=True),
+                      feasibility_only=True)
+        timings["presolve"] = time.monotonic() - t0
+        if probe.status == "infeasible":
+            return _no_layout(spec, options, probe, [], explain_infeasible, timings, began)
+        provider = start_provider or default_start_provider
+        share = replace(options, time_limit=max(0.1, START_SHARE * options.time_limit))
+        t0 = time.monotonic()
+        rects_start = provider(spec, share)
+        timings["start"] = time.monotonic() - t0
+        if rects_start is None and no_start_fallback is not None:
+            left = replace(options, time_limit=max(0.1, deadline - time.monotonic()))
+            result = no_start_fallback(spec, left, progress)
+            if result.layout is None:
+                # the decomposition ran on what the construction left; the limit was the user's
+                status = result.outcome.status if result.outcome is not None else "time_limit"
+                result = replace(result, diagnostics=explain.restate_limit(result.diagnostics, spec, options, status))
+            return result
+    if rects_start is not None:
+        # a start that fails verification is never handed on as an answer
+        start_layout = layout_from_rects(spec, rects_start)
+        if verify(spec, start_layout):
+            rects_start = None
+        else:
+            method = "construction"
+
+    polished: dict[str, Rect] | None = None
+    if rects_start is not None:
+        warm_start_from_rects(model, spec, rects_start)
+        # the start's relations with their best sizes and places: a much better start for SCIP
+        t0 = time.monotonic()
+        share = max(0.2, min(POLISH_SHARE * options.time_limit, deadline - time.monotonic()))
+        first_polish = polish(model, replace(options, time_limit=share, quiet=True))
+        if first_polish.has_solution:
+            polished = rects_from_model(model)
+        else:
+            warm_start_from_rects(model, spec, rects_start)
+        timings["polish"] = time.monotonic() - t0
+        # neighbourhoods of LNS_SIZE rooms only pay off when they are a small part of the spec
+        if first_polish.has_solution and len(spec.rooms) > 2 * LNS_SIZE and options.search:
+            t0 = time.monotonic()
+            lns_share = LNS_SHARE[len(spec.rooms) <= LNS_SMALL]
+            lns_deadline = time.monotonic() + lns_share * max(0.0, deadline - time.monotonic())
+            improve_by_neighbourhoods(model, options, deadline=lns_deadline, size=LNS_SIZE, progress=progress)
+            polished = rects_from_model(model)
+            timings["neighbourhoods"] = time.monotonic() - t0
+
+    # keep time for polishing SCIP's incumbent; translating the model costs about what
+    # building it did
+    reserve = min(POLISH_SHARE * options.time_limit, timings["build"] + 1.0)
+    remaining = max(0.5, deadline - time.monotonic() - reserve)
+    start_objective = objective_of_rects(spec, polished) if polished is not None else None
+    t0 = time.monotonic()
+    if options.search or rects_start is None:
+        outcome = solve(model, replace(options, time_limit=remaining), progress=progress,
+                        warm_start=rects_start is not None)
+    else:
+        outcome = SolveOutcome(status="construction", has_solution=False)
+    timings["solve"] = time.monotonic() - t0
+    improved = outcome.has_solution and (
+        start_objective is None or outcome.objective is None or outcome.objective < start_objective - 1e-6)
+    if improved:
+        # SCIP's incumbent need not be the best geometry for its own relations
+        t0 = time.monotonic()
+        incumbent = rects_from_model(model)
+        last = max(0.2, deadline - time.monotonic())
+        if not polish(model, replace(options, time_limit=last, quiet=True)).has_solution:
+            warm_start_from_rects(model, spec, incumbent)
+        timings["polish"] = timings.get("polish", 0.0) + time.monotonic() - t0
+
+    # SCIP's (polished) incumbent, the polished start and the start itself: the best one
+    # that passes verification is the answer
+    candidates: list[tuple[dict[str, Rect], str]] = []
+    if outcome.has_solution:
+        candidates.append((rects_from_model(model), outcome.status))
+    if polished is not None:
+        candidates.append((polished, "construction"))
+    if rects_start is not None:
+        candidates.append((rects_start, "construction"))
+
+    t0 = time.monotonic()
+    failures = []
+    first = outcome.first_solution_seconds
+    if method == "construction":
+        first = timings.get("start", 0.0)
+    elif first is not None:
+        first += timings["build"]
+    best: tuple[float, Layout, str] | None = None
+    for rects, status in candidates:
+        # (5.1) with o chosen per room as the thesis' model may choose it: the best
+        # orientation that satisfies (5.4)-(5.6)
+        objective = objective_of_rects(spec, rects)
+        if best is not None and objective >= best[0]:
+            continue
+        # SCIP's bound is a lower bound on (5.1) over all layouts, so it bounds every candidate
+        gap = relative_gap(objective, outcome.bound) if outcome.bound is not None else None
+        info = SolveInfo(
+            status=status,
+            objective=round_layout_number(objective),
+            bound=None if outcome.bound is None else round_layout_number(outcome.bound),
+            gap=None if gap is None else round_layout_number(gap),
+            seconds=round(time.monotonic() - began, 3),
+            first_feasible_seconds=None if first is None else round(first, 3),
+            seed=options.seed,
+            method=method,
+        )
+        layout = layout_from_rects(spec, rects, info)
+        violations = verify(spec, layout)
+        if violations:
+            failures.append(violations)
+        else:
+            best = (objective, layout, status)
+    timings["verify"] = time.monotonic() - t0
+    if best is not None:
+        timings["total"] = time.monotonic() - began
+        return CompileResult(best[1], [], best[2], timings, outcome)
+
+    return _no_layout(spec, options, outcome, failures, explain_infeasible, timings, began)
+
+
+def _no_layout(spec: Spec, options: SolveOptions, outcome: SolveOutcome, failures: list, explain_infeasible: bool,
+               timings: dict[str, float], began: float) -> CompileResult:
+    """The CompileResult without a layout: E903 (verification), E901/E904 (infeasible), E902."""
+    if failures:
+        diagnostics = [explain.verification_failed(spec, failures[0])]
+        status = "verify_failed"
+    elif outcome.status == "infeasible":
+        status = "infeasible"
+        t0 = time.monotonic()
+        diagnostics = (
+            explain.explain_infeasibility(spec, options) if explain_infeasible
+            else [explain.infeasible_without_explanation(spec)]
+        )
+        timings["explain"] = time.monotonic() - t0
+    else:
+        status = "no_layout"
+        diagnostics = [explain.no_layout_in_time(spec, options, outcome.status)]
+    timings["total"] = time.monotonic() - began
+    return CompileResult(None, diagnostics, status, timings, outcome)

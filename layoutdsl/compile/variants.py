@@ -1,0 +1,240 @@
+"""Many different verified layouts from one spec (the thesis, §6.2; issue 11).
+
+Variant k (1..N) is compiled with seed + k - 1. Two sources of variants:
+
+- "graph" (the default): each variant is a NEW arrangement generated from the room graph
+  alone (layoutdsl.generate), ignoring the spec's hints, so variants differ from the
+  original plan and from one another;
+- "hints": as before issue 11, for comparison: the first layout is repaired from the hints
+  perturbed by the seed, and (as in the thesis) a chosen room, an entrance if there is
+  one, gets a `Position` at another point of the boundary per variant (dropped again if that
+  variant finds no layout with it). These stay close to the original arrangement.
+
+Each variant stops at a short deterministic rule: its first verified layout, polished with
+its relations fixed (SolveOptions.search off), so the same spec and seed give the same
+bytes and a 50-room variant costs seconds, not the compile's full time limit.
+
+`diversity` is the plain share of room pairs whose relation differs; `compile --variants`
+reports the arrangement difference of layoutdsl.evaluate.difference (best of the 8
+rotations and mirrors) pairwise and from the hints, and writes NAME-variants.json.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import random
+import time
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, replace
+from itertools import combinations
+from pathlib import Path
+
+from layoutdsl.syntax.ast import Position, Spec
+from layoutdsl.layout import Layout
+
+def default_workers() -> int:
+    """Parallel variant processes: one per core this process may use."""
+    import os
+
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # not on every platform
+        return max(1, os.cpu_count() or 1)
+
+
+SOURCES = ("graph", "hints")
+"""Where variants come from: generated from the room graph, or perturbed from the hints."""
+
+
+@dataclass(frozen=True, slots=True)
+class VariantsResult:
+    """The variants (None where one found no layout), their diversity and the files written."""
+
+    layouts: list[Layout | None]
+    diversity: float | None
+    """Mean share of room pairs whose relation differs between two variants found (None
+    with fewer than two); the CLI reports the symmetry-aware arrangement difference."""
+    paths: list[Path]
+    positions: list[tuple[str, float, float] | None]
+    """The (room, x, y) each variant fixed, or None where it kept the spec's own positions."""
+
+
+def chosen_room(spec: Spec) -> str | None:
+    """The room whose position varies: the first entrance, else the best-connected room.
+
+    Rooms that already have a position in the spec are left as they are.
+    """
+    fixed = {p.room for p in spec.positions}
+    free = [room for room in spec.rooms if room.id not in fixed]
+    if not free:
+        return None
+    for room in free:
+        if room.rtype == "E":
+            return room.id
+    degree = {room.id: 0 for room in free}
+    for adj in spec.adjacencies:
+        for room_id in (adj.a, adj.b):
+            if room_id in degree:
+                degree[room_id] += 1
+    return max(free, key=lambda room: degree[room.id]).id
+
+
+def variant_point(spec: Spec, seed: int, index: int) -> tuple[float, float]:
+    """The point variant `index` puts the chosen room on: spread over the boundary's inside."""
+    assert spec.boundary is not None
+    rng = random.Random(f"{seed}:{index}")
+    return (
+        rng.uniform(0.1, 0.9) * spec.boundary.w,
+        rng.uniform(0.1, 0.9) * spec.boundary.h,
+    )
+
+
+def relation(a, b) -> str:
+    """Where a lies relative to b along the axis that separates them most (layout.geometry.SIDES)."""
+    gap_x = max(b.x - a.x2, a.x - b.x2)
+    gap_y = max(b.y - a.y2, a.y - b.y2)
+    (acx, acy), (bcx, bcy) = a.centre, b.centre
+    if gap_x >= gap_y:
+        return "left" if bcx > acx else "right"
+    return "below" if bcy > acy else "above"
+
+
+def diversity(layouts: list[Layout]) -> float | None:
+    """Mean over variant pairs of the fraction of room pairs whose relation differs."""
+    if len(layouts) < 2:
+        return None
+    fractions = []
+    for first, second in combinations(layouts, 2):
+        rooms_a = {room.id: room for room in first.rooms}
+        rooms_b = {room.id: room for room in second.rooms}
+        ids = sorted(rooms_a)
+        pairs = list(combinations(ids, 2))
+        if not pairs:
+            continue
+        differ = sum(
+            relation(rooms_a[i], rooms_a[j]) != relation(rooms_b[i], rooms_b[j]) for i, j in pairs
+        )
+        fractions.append(differ / len(pairs))
+    return sum(fractions) / len(fractions) if fractions else None
+
+
+_SPEC_FOR_WORKERS: Spec | None = None
+"""The spec, inherited by forked workers (AST spans hold mapping proxies, which don't pickle)."""
+
+
+def _solve_variant(job: tuple[int, int, object, tuple[str, float, float] | None]):
+    """Compile one variant in a worker: its layout and the position it kept (or None)."""
+    index, seed, options, point, source = job
+    spec = _SPEC_FOR_WORKERS
+    assert spec is not None
+    return _compile_variant(spec, index, seed, options, point, source)
+
+
+def _compile_variant(spec: Spec, index: int, seed: int, options, point, source: str = "graph"):
+    from layoutdsl.compile import compile_spec
+    from layoutdsl.compile.construct import construct_start
+
+    variant_seed = seed + index - 1
+    began = time.monotonic()
+    deadline = began + options.time_limit
+    from_hints = source == "hints"
+
+    def provider(sub_spec: Spec, sub_options) -> dict | None:
+        return construct_start(sub_spec, seed=variant_seed, randomize=from_hints,
+                               use_hints=from_hints,
+                               deadline=time.monotonic() + sub_options.time_limit)
+
+    attempts = [point, None] if point is not None else [None]
+    for attempt_point in attempts:
+        variant_spec = spec
+        if attempt_point is not None:
+            room, x, y = attempt_point
+            variant_spec = replace(spec, positions=spec.positions + (Position(room, x, y),))
+        left = deadline - time.monotonic()
+        if left <= 0.5:
+            break
+        # with a position, keep half the time for the variant without it
+        limit = left / 2 if attempt_point is not None else left
+        variant_options = replace(options, time_limit=limit, seed=variant_seed, quiet=True,
+                                  search=False)
+        result = compile_spec(variant_spec, variant_options, start_provider=provider,
+                              explain_infeasible=False)
+        if result.layout is not None:
+            return result.layout, attempt_point
+    return None, None
+
+
+def compile_variants(
+    spec: Spec,
+    n: int,
+    *,
+    seed: int = 0,
+    options=None,
+    outdir: Path | str | None = None,
+    formats=None,
+    robot_room: str | None = None,
+    workers: int | None = None,
+    source: str = "graph",
+    world_options: dict | None = None,
+) -> VariantsResult:
+    """Compile N variants of the spec; write NAME-k.* (and NAME-k.layout.json) to `outdir`.
+
+    Each variant gets at most options.time_limit seconds; up to `workers` (default: one per
+    usable core) run at once. `source` is one of SOURCES (see the module docstring).
+    `world_options` (wall_height, robot) go to the 3D emitters.
+    """
+    from layoutdsl.solve import SolveOptions
+
+    global _SPEC_FOR_WORKERS
+    if source not in SOURCES:
+        raise ValueError(f"unknown variant source {source!r}; expected one of {SOURCES}")
+    if options is None:
+        options = SolveOptions.from_settings(spec.settings)
+    room = chosen_room(spec) if source == "hints" else None
+    jobs = []
+    for index in range(1, n + 1):
+        point = None
+        if room is not None and spec.boundary is not None:
+            x, y = variant_point(spec, seed, index)
+            point = (room, x, y)
+        jobs.append((index, seed, options, point, source))
+
+    results: list[tuple[Layout | None, object]]
+    workers = max(1, min(workers or default_workers(), n))
+    if workers > 1 and "fork" in multiprocessing.get_all_start_methods():
+        _SPEC_FOR_WORKERS = spec
+        try:
+            context = multiprocessing.get_context("fork")
+            with ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
+                results = list(pool.map(_solve_variant, jobs))
+        finally:
+            _SPEC_FOR_WORKERS = None
+    else:
+        results = [_compile_variant(spec, *job) for job in jobs]
+
+    layouts = [layout for layout, _ in results]
+    positions = [point for _, point in results]
+    found = [layout for layout in layouts if layout is not None]
+    paths: list[Path] = []
+    if outdir is not None:
+        paths = _write(spec, layouts, Path(outdir), formats, robot_room, world_options or {})
+    return VariantsResult(layouts, diversity(found), paths, positions)
+
+
+def _write(
+    spec: Spec, layouts: list[Layout | None], outdir: Path, formats, robot_room, world_options: dict
+) -> list[Path]:
+    """NAME-k.layout.json plus the emitters' files for each variant that has a layout."""
+    from layoutdsl.emit.atomic import write_text_atomic
+    from layoutdsl.emit import DEFAULT_FORMATS, write_outputs
+
+    outdir.mkdir(parents=True, exist_ok=True)
+    paths: list[Path] = []
+    for index, layout in enumerate(layouts, start=1):
+        if layout is None:
+            continue
+        stem = f"{spec.name}-{index}"
+        paths.append(write_text_atomic(outdir / f"{stem}.layout.json", layout.to_json()))
+        paths += write_outputs(layout, outdir, stem, formats or DEFAULT_FORMATS,
+                               robot_room=robot_room, **world_options)
+    return paths

@@ -1,0 +1,1 @@
+"""Tools for working on layoutdsl itself (not used by the pipeline)."""

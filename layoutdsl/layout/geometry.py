@@ -1,0 +1,48 @@
+"""Plain rectangles -> Layout: the one conversion every stage judges a geometry by.
+
+The construction, the compile pipeline and explain all turn `Rect`s into a Layout here, so
+a start is verified exactly as a compiled layout is.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
+from layoutdsl.syntax.ast import Spec
+
+Rect = tuple[float, float, float, float]
+"""(x, y, w, h): bottom-left corner and size, metres, boundary frame."""
+
+SIDES = ("left", "right", "below", "above")
+"""Where the first rectangle of a pair lies relative to the second ("a is left of b"): the
+one direction convention of the model's ω (5.8), the construction and the variants."""
+
+OPPOSITE_SIDE = {"left": "right", "right": "left", "below": "above", "above": "below"}
+"""The side b is on when a is on `side` of it."""
+
+
+def layout_from_rects(spec: Spec, rects: Mapping[str, Rect], info: SolveInfo | None = None) -> Layout:
+    """A Layout from plain rectangles: rounded rooms, portals centred on their shared walls."""
+    assert spec.boundary is not None
+    placed = {}
+    for room in spec.rooms:
+        x, y, w, h = (round_layout_number(float(v)) for v in rects[room.id])
+        placed[room.id] = PlacedRoom(room.id, room.label, room.rtype, x, y, w, h)
+    portals = []
+    for adj in spec.adjacencies:
+        try:
+            portals.append(make_portal(placed[adj.a], placed[adj.b], adj.kind, adj.door))
+        except ValueError:
+            continue  # no shared wall: the verifier reports the adjacency
+    obstacles = tuple(PlacedObstacle(o.id, o.x, o.y, o.w, o.h) for o in spec.boundary.obstacles)
+    return Layout(
+        name=spec.name,
+        width=spec.boundary.w,
+        height=spec.boundary.h,
+        walldim=spec.settings.walldim,
+        rooms=tuple(placed[r.id] for r in spec.rooms),
+        portals=tuple(portals),
+        obstacles=obstacles,
+        solve=info,
+    )

@@ -1,0 +1,369 @@
+"""The independent verifier: does a Layout satisfy its Spec?
+
+This module reads only the Spec and the plain numbers of a Layout; it shares no code with
+the optimisation model on purpose, so a modelling mistake cannot hide itself. Every layout
+is verified before anything is written; a layout with violations is an error, never an
+output.
+
+Rules (the thesis, §5.5.1, with the adjacency rule corrected as the scouting notes require):
+- every spec room is placed exactly once, with finite numbers, its type and label;
+- inside the boundary (5.7);
+- sizes within bounds in one of the two orientations (5.4, 5.5): the thesis enforces the
+  larger of the two minimum (maximum) sizes on the longer side, so a room may be rotated;
+- aspect ratio within [minar, maxar] for every room but corridors (5.6), in the same
+  orientation as the sizes;
+- no two rooms, and no room and obstacle, closer than the wall thickness (5.8);
+- each adjacency: the rooms face each other across exactly one wall thickness, and the
+  interiors face each other along at least door / door_utilization (5.9);
+- positions and connection points covered (5.10, 5.11), onB rooms touch the boundary (5.12);
+- each cluster admits one offset that keeps every member within the margin (5.13);
+- portals: exactly one per adjacency, `width` = the door, centred on the shared wall.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from layoutdsl.syntax.ast import Spec
+from layoutdsl.layout import Layout, PlacedRoom, shared_wall
+from layoutdsl.diagnostics.source import Span
+
+TOLERANCE = 1e-6
+"""Metres. Solutions must meet every rule to within this absolute tolerance."""
+
+
+@dataclass(frozen=True, slots=True)
+class Violation:
+    """One broken rule: what, which rooms, and the spec line it comes from (if any)."""
+
+    rule: str
+    """'missing', 'extra', 'not-finite', 'type', 'inside', 'size', 'aspect-ratio', 'overlap',
+    'obstacle', 'adjacency', 'position', 'connection', 'on-boundary', 'cluster', 'portal'."""
+    rooms: tuple[str, ...]
+    message: str
+    span: Span | None = None
+
+
+def verify(spec: Spec, layout: Layout, tol: float = TOLERANCE) -> list[Violation]:
+    """All violations of the spec's hard constraints by the layout (empty = valid)."""
+    placed = {room.id: room for room in layout.rooms}
+    violations = list(_check_room_set(spec, layout, tol))
+    if violations:
+        # Geometry checks below assume every room is present and finite.
+        return violations
+    violations += _check_rooms(spec, placed, tol)
+    violations += _check_non_overlap(spec, layout, tol)
+    violations += _check_adjacencies(spec, placed, tol)
+    violations += _check_points(spec, placed, tol)
+    violations += _check_clusters(spec, placed, tol)
+    violations += _check_portals(spec, layout, placed, tol)
+    return violations
+
+
+def _check_room_set(spec: Spec, layout: Layout, tol: float):
+    wanted = {room.id: room for room in spec.rooms}
+    seen: set[str] = set()
+    for room in layout.rooms:
+        if room.id not in wanted:
+            yield Violation("extra", (room.id,), f"room `{room.id}` is not in the spec")
+            continue
+        if room.id in seen:
+            yield Violation("extra", (room.id,), f"room `{room.id}` is placed twice")
+        seen.add(room.id)
+        numbers = (room.x, room.y, room.w, room.h)
+        if not all(math.isfinite(v) for v in numbers):
+            yield Violation("not-finite", (room.id,), f"room `{room.id}` has a non-finite coordinate")
+        spec_room = wanted[room.id]
+        if (room.rtype, room.label) != (spec_room.rtype, spec_room.label):
+            yield Violation(
+                "type",
+                (room.id,),
+                f"room `{room.id}` is {room.rtype} `{room.label}`, spec says "
+                f"{spec_room.rtype} `{spec_room.label}`",
+                spec_room.span,
+            )
+    for room_id, room in wanted.items():
+        if room_id not in seen:
+            yield Violation("missing", (room_id,), f"room `{room_id}` is not placed", room.span)
+    if spec.boundary is None:
+        yield Violation("inside", (), "the spec has no boundary")
+    elif not math.isclose(layout.width, spec.boundary.w, abs_tol=tol) or not math.isclose(
+        layout.height, spec.boundary.h, abs_tol=tol
+    ):
+        yield Violation(
+            "inside",
+            (),
+            f"layout boundary {layout.width} x {layout.height} differs from the spec's "
+            f"{spec.boundary.w} x {spec.boundary.h}",
+            spec.boundary.span,
+        )
+
+
+def _fits_orientation(
+    long_side: float, short_side: float, room, tol: float, *, aspect: bool = True
+) -> bool:
+    """Sizes (5.4, 5.5) and, if `aspect`, aspect ratio (5.6), `long_side` taking the larger bounds."""
+    min_long, min_short = max(room.min_w, room.min_h), min(room.min_w, room.min_h)
+    max_long, max_short = max(room.max_w, room.max_h), min(room.max_w, room.max_h)
+    if not (min_long - tol <= long_side <= max_long + tol):
+        return False
+    if not (min_short - tol <= short_side <= max_short + tol):
+        return False
+    if room.is_corridor or not aspect:
+        return True
+    # min_ar * short <= long <= max_ar * short, tolerance scaled like a length.
+    return room.min_ar * short_side <= long_side + tol and long_side <= room.max_ar * short_side + tol
+
+
+def _check_rooms(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
+    width, height = spec.boundary.w, spec.boundary.h
+    for room in spec.rooms:
+        p = placed[room.id]
+        if p.x < -tol or p.y < -tol or p.x2 > width + tol or p.y2 > height + tol:
+            yield Violation(
+                "inside",
+                (room.id,),
+                f"room `{room.id}` ({_rect(p)}) leaves the {width:g} x {height:g} boundary",
+                room.span,
+            )
+        # The thesis' orientation o decides which side gets the larger bounds; o = 0 gives
+        # the larger minimum/maximum to w, o = 1 to h. Either orientation may be chosen.
+        fits = _fits_orientation(p.w, p.h, room, tol) or _fits_orientation(p.h, p.w, room, tol)
+        if not fits:
+            sizes_ok = _fits_orientation(p.w, p.h, room, tol, aspect=False) or _fits_orientation(
+                p.h, p.w, room, tol, aspect=False
+            )
+            if sizes_ok:
+                ratio = max(p.w, p.h) / max(min(p.w, p.h), 1e-12)
+                yield Violation(
+                    "aspect-ratio",
+                    (room.id,),
+                    f"room `{room.id}` has aspect ratio {ratio:.6g}, outside "
+                    f"[{room.min_ar:g}, {room.max_ar:g}]",
+                    room.span,
+                )
+            else:
+                yield Violation(
+                    "size",
+                    (room.id,),
+                    f"room `{room.id}` is {p.w:.6g} x {p.h:.6g}, outside its size bounds "
+                    f"w [{room.min_w:g}, {room.max_w:g}], h [{room.min_h:g}, {room.max_h:g}] "
+                    "in either orientation",
+                    room.span,
+                )
+        if room.on_boundary and not (
+            p.x <= tol or p.y <= tol or p.x2 >= width - tol or p.y2 >= height - tol
+        ):
+            yield Violation(
+                "on-boundary",
+                (room.id,),
+                f"room `{room.id}` is marked onB but touches no side of the boundary",
+                room.spans.get("on_boundary", room.span),
+            )
+
+
+def _separation(ax: float, aw: float, bx: float, bw: float) -> float:
+    """Signed distance between two intervals (negative when they overlap)."""
+    return max(bx - (ax + aw), ax - (bx + bw))
+
+
+def _check_non_overlap(spec: Spec, layout: Layout, tol: float):
+    wall = spec.settings.walldim
+    rooms = sorted(layout.rooms, key=lambda r: r.x)
+    # Sweep along x: only rooms whose x-ranges come within a wall thickness can clash.
+    for i, a in enumerate(rooms):
+        for b in rooms[i + 1 :]:
+            if b.x >= a.x2 + wall - tol:
+                break
+            gap_x = _separation(a.x, a.w, b.x, b.w)
+            gap_y = _separation(a.y, a.h, b.y, b.h)
+            separation = max(gap_x, gap_y)
+            if separation < wall - tol:
+                first, second = sorted((a.id, b.id))
+                how = "overlap" if separation < 0 else f"are only {separation:.6g} m apart"
+                yield Violation(
+                    "overlap",
+                    (first, second),
+                    f"rooms `{first}` and `{second}` {how}; walls need {wall:g} m between rooms",
+                )
+    if spec.boundary is None:
+        return
+    for obstacle in spec.boundary.obstacles:
+        for room in layout.rooms:
+            gap_x = _separation(room.x, room.w, obstacle.x, obstacle.w)
+            gap_y = _separation(room.y, room.h, obstacle.y, obstacle.h)
+            if max(gap_x, gap_y) < wall - tol:
+                yield Violation(
+                    "obstacle",
+                    (room.id,),
+                    f"room `{room.id}` comes within {max(gap_x, gap_y):.6g} m of obstacle "
+                    f"`{obstacle.id}` (wall thickness {wall:g})",
+                    obstacle.span,
+                )
+
+
+def _check_adjacencies(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
+    wall = spec.settings.walldim
+    for adjacency in spec.adjacencies:
+        a, b = placed[adjacency.a], placed[adjacency.b]
+        needed = adjacency.door / spec.settings.door_utilization
+        best = _facing(a, b)
+        if best is None:
+            yield Violation(
+                "adjacency",
+                (a.id, b.id),
+                f"rooms `{a.id}` and `{b.id}` are adjacent in the spec but face no common wall",
+                adjacency.span,
+            )
+            continue
+        gap, shared = best
+        if gap > wall + tol:
+            yield Violation(
+                "adjacency",
+                (a.id, b.id),
+                f"rooms `{a.id}` and `{b.id}` are {gap:.6g} m apart; adjacent rooms must be "
+                f"exactly one wall ({wall:g} m) apart",
+                adjacency.span,
+            )
+        elif shared < needed - tol:
+            yield Violation(
+                "adjacency",
+                (a.id, b.id),
+                f"rooms `{a.id}` and `{b.id}` share {shared:.6g} m of wall, less than the "
+                f"{needed:.6g} m the door needs",
+                adjacency.span,
+            )
+
+
+def _facing(a: PlacedRoom, b: PlacedRoom) -> tuple[float, float] | None:
+    """(gap across the wall, length the interiors face each other) for the closer axis."""
+    gap_x = _separation(a.x, a.w, b.x, b.w)
+    gap_y = _separation(a.y, a.h, b.y, b.h)
+    if gap_x >= gap_y:
+        shared = min(a.y2, b.y2) - max(a.y, b.y)
+        gap = gap_x
+    else:
+        shared = min(a.x2, b.x2) - max(a.x, b.x)
+        gap = gap_y
+    if shared <= 0:
+        return None
+    return gap, shared
+
+
+def _covers(room: PlacedRoom, x: float, y: float, tol: float) -> bool:
+    return room.x - tol <= x <= room.x2 + tol and room.y - tol <= y <= room.y2 + tol
+
+
+def _check_points(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
+    for position in spec.positions:
+        room = placed.get(position.room)
+        if room is not None and not _covers(room, position.x, position.y, tol):
+            yield Violation(
+                "position",
+                (room.id,),
+                f"room `{room.id}` ({_rect(room)}) does not cover its position "
+                f"({position.x:g}, {position.y:g})",
+                position.span,
+            )
+    for connection in spec.connections:
+        room = placed.get(connection.room)
+        if room is None:
+            continue
+        for x, y in ((connection.x1, connection.y1), (connection.x2, connection.y2)):
+            if not _covers(room, x, y, tol):
+                yield Violation(
+                    "connection",
+                    (room.id,),
+                    f"room `{room.id}` ({_rect(room)}) does not cover the connection point "
+                    f"({x:g}, {y:g})",
+                    connection.span,
+                )
+
+
+def _check_clusters(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
+    margin = spec.settings.cluster_margin
+    for cluster in spec.clusters:
+        # (5.13): x_i - margin <= xf + cx <= x_i + w_i + margin for every member, so cx must
+        # lie in the intersection of the members' intervals (likewise cy).
+        lo_x = lo_y = -math.inf
+        hi_x = hi_y = math.inf
+        for member in cluster.members:
+            room = placed.get(member.room)
+            if room is None:
+                continue
+            lo_x = max(lo_x, room.x - margin - member.x)
+            hi_x = min(hi_x, room.x2 + margin - member.x)
+            lo_y = max(lo_y, room.y - margin - member.y)
+            hi_y = min(hi_y, room.y2 + margin - member.y)
+        if lo_x > hi_x + tol or lo_y > hi_y + tol:
+            yield Violation(
+                "cluster",
+                tuple(m.room for m in cluster.members),
+                f"no placement of cluster `{cluster.id}` keeps every member within "
+                f"{margin:g} m of its cluster point",
+                cluster.span,
+            )
+
+
+def _check_portals(spec: Spec, layout: Layout, placed: dict[str, PlacedRoom], tol: float):
+    wanted = {frozenset((adj.a, adj.b)): adj for adj in spec.adjacencies}
+    seen: set[frozenset[str]] = set()
+    for portal in layout.portals:
+        key = frozenset((portal.a, portal.b))
+        adjacency = wanted.get(key)
+        if adjacency is None:
+            yield Violation(
+                "portal",
+                (portal.a, portal.b),
+                f"portal between `{portal.a}` and `{portal.b}`, which the spec does not make adjacent",
+            )
+            continue
+        if key in seen:
+            yield Violation(
+                "portal", (portal.a, portal.b), f"two portals between `{portal.a}` and `{portal.b}`"
+            )
+        seen.add(key)
+        if portal.kind != adjacency.kind or not math.isclose(portal.width, adjacency.door, abs_tol=tol):
+            yield Violation(
+                "portal",
+                (portal.a, portal.b),
+                f"portal `{portal.a}`-`{portal.b}` is {portal.kind} {portal.width:g} m, the spec "
+                f"says {adjacency.kind} {adjacency.door:g} m",
+                adjacency.span,
+            )
+        length = math.hypot(portal.x2 - portal.x1, portal.y2 - portal.y1)
+        wall = shared_wall(placed[portal.a], placed[portal.b])
+        if wall is None or not math.isclose(length, portal.width, abs_tol=tol):
+            yield Violation(
+                "portal",
+                (portal.a, portal.b),
+                f"portal `{portal.a}`-`{portal.b}` is not a door of its width on a shared wall",
+                adjacency.span,
+            )
+            continue
+        axis, middle, lo, hi = wall
+        along = (portal.y1, portal.y2) if axis == "x" else (portal.x1, portal.x2)
+        across = (portal.x1, portal.x2) if axis == "x" else (portal.y1, portal.y2)
+        centred = math.isclose(sum(along) / 2, (lo + hi) / 2, abs_tol=tol)
+        on_wall = all(math.isclose(c, middle, abs_tol=tol) for c in across)
+        within = min(along) >= lo - tol and max(along) <= hi + tol
+        if not (centred and on_wall and within):
+            yield Violation(
+                "portal",
+                (portal.a, portal.b),
+                f"portal `{portal.a}`-`{portal.b}` is not centred on the wall the rooms share",
+                adjacency.span,
+            )
+    for key, adjacency in wanted.items():
+        if key not in seen:
+            yield Violation(
+                "portal",
+                (adjacency.a, adjacency.b),
+                f"no portal between adjacent rooms `{adjacency.a}` and `{adjacency.b}`",
+                adjacency.span,
+            )
+
+
+def _rect(room: PlacedRoom) -> str:
+    return f"x {room.x:.6g}, y {room.y:.6g}, w {room.w:.6g}, h {room.h:.6g}"

@@ -1,0 +1,229 @@
+"""The spec's abstract syntax tree: frozen dataclasses, each carrying its source span.
+
+Lengths are metres. Coordinates are in the boundary's frame: origin at the boundary's
+bottom-left corner, x to the right, y upwards, and a rectangle's (x, y) is its bottom-left
+corner (the thesis, §5.4). Spans never take part in equality, so `parse(format(spec)) == spec`
+compares content only.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+from layoutdsl.diagnostics.source import Span
+
+_NO_SPANS: Mapping[str, Span] = MappingProxyType({})
+
+ROOM_TYPE_NAMES = {"R": "room", "C": "corridor", "E": "entrance"}
+"""Room type letter -> what it is: R generic room, C corridor, E entrance (the thesis, §5.2)."""
+
+ROOM_TYPES = tuple(ROOM_TYPE_NAMES)
+
+EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
+"""Values of the `emphasis` setting (and `--emphasis`): SCIP's emphasis meta settings."""
+
+ADJACENCY_TYPES = ("e", "i")
+"""e explicit portal (a door), i implicit portal (an opening with no barrier)."""
+
+
+@dataclass(frozen=True, slots=True)
+class Room:
+    """A rectangular room to place (one line of the `rooms` section)."""
+
+    id: str
+    min_w: float
+    max_w: float
+    target_w: float
+    min_h: float
+    max_h: float
+    target_h: float
+    min_ar: float
+    max_ar: float
+    rtype: str
+    """One of ROOM_TYPES."""
+    label: str
+    """Free text; may contain spaces (`MEDIUM SERVICE`)."""
+    on_boundary: bool = False
+    """`onB`: the room must touch a side of the boundary (5.12)."""
+    rho_cover: float = 1.0
+    """Weight of this room's area in E_cover (5.2)."""
+    rho_error: float = 1.0
+    """Weight of this room's size error in E_error (5.3)."""
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+    """Span of each field by name (`min_w`, `label`, ...), for pointed diagnostics."""
+
+    @property
+    def is_corridor(self) -> bool:
+        return self.rtype == "C"
+
+
+@dataclass(frozen=True, slots=True)
+class Obstacle:
+    """A fixed rectangle inside the boundary that no room may overlap."""
+
+    id: str
+    x: float
+    y: float
+    w: float
+    h: float
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Boundary:
+    """The rectangle every room must lie in, with its obstacles."""
+
+    w: float
+    h: float
+    obstacles: tuple[Obstacle, ...] = ()
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Adjacency:
+    """Two rooms that share a wall with a portal of at least `door` metres."""
+
+    a: str
+    b: str
+    door: float
+    """`mina`: the door length; the shared wall must be at least door / door_utilization."""
+    kind: str
+    """One of ADJACENCY_TYPES."""
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Position:
+    """The room must cover the point (x, y) (5.10). At most one per room."""
+
+    room: str
+    x: float
+    y: float
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Connection:
+    """The room must cover both points (5.11). A room may have several."""
+
+    room: str
+    x1: float
+    y1: float
+    x2: float
+    y2: float
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class ClusterMember:
+    """A room of a cluster and its point in the cluster's own frame (5.13)."""
+
+    room: str
+    x: float
+    y: float
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Cluster:
+    """Rooms whose relative positions are kept, the cluster itself free to move (5.13)."""
+
+    id: str
+    members: tuple[ClusterMember, ...]
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Hint:
+    """An optional starting rectangle for a room (e.g. its place in the original plan).
+
+    Not a constraint: the solver may move and resize the room freely. Hints only guide the
+    construction of the first feasible layout.
+    """
+
+    room: str
+    x: float
+    y: float
+    w: float
+    h: float
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+
+@dataclass(frozen=True, slots=True)
+class Settings:
+    """Program parameters the thesis kept outside its file (the `settings` section).
+
+    Every field has a default; `explicit` names the ones the spec set, so the formatter
+    writes back only those and CLI flags can tell a default from a choice.
+    """
+
+    lambda_cover: float = 0.1
+    """λ_cover (5.1); the thesis found 0.1-0.2 keeps the generated area near the original (§6.1.1)."""
+    lambda_error: float = 1.0
+    """λ_error (5.1)."""
+    walldim: float = 0.2
+    """Wall thickness in metres: the gap between two rooms (5.8, 5.9)."""
+    door_utilization: float = 1.0
+    """A shared wall must be at least door / door_utilization long (5.9); in (0, 1]."""
+    cluster_margin: float = 0.5
+    """How far (metres) a cluster member may deviate from its cluster point (5.13)."""
+    time_limit: float = 60.0
+    """Wall-clock seconds for the whole solve."""
+    gap: float = 0.01
+    """Relative optimality gap at which the solve stops."""
+    seed: int = 0
+    """Random seed for SCIP and for the construction of the first layout."""
+    emphasis: str = "heuristics"
+    """SCIP emphasis: default, heuristics, feasibility, optimality, easycip."""
+    node_limit: int | None = None
+    """Stop after this many branch-and-bound nodes: a deterministic stopping rule."""
+    explicit: frozenset[str] = field(default=frozenset(), compare=False)
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+
+SETTING_KEYS = (
+    "name", "lambda_cover", "lambda_error", "walldim", "door_utilization", "cluster_margin",
+    "time_limit", "gap", "seed", "emphasis", "node_limit",
+)  # fmt: skip
+"""Keys of the `settings` section, in the order the formatter writes them: `name` (the
+Spec's name), then the Settings fields."""
+
+
+@dataclass(frozen=True, slots=True)
+class Spec:
+    """A whole layout spec, as written (names not yet resolved: see check.py)."""
+
+    name: str
+    """The building's name: the file's stem unless a `name` setting says otherwise."""
+    rooms: tuple[Room, ...]
+    boundary: Boundary | None
+    adjacencies: tuple[Adjacency, ...] = ()
+    positions: tuple[Position, ...] = ()
+    connections: tuple[Connection, ...] = ()
+    clusters: tuple[Cluster, ...] = ()
+    hints: tuple[Hint, ...] = ()
+    settings: Settings = Settings()
+    path: str = field(default="<spec>", compare=False)
+
+    def room(self, room_id: str) -> Room | None:
+        """The room with this id, or None."""
+        for room in self.rooms:
+            if room.id == room_id:
+                return room
+        return None
+
+    @property
+    def room_ids(self) -> tuple[str, ...]:
+        return tuple(room.id for room in self.rooms)

@@ -1,0 +1,47 @@
+"""Small synthetic specs for the construction tests (feasible by construction)."""
+
+from __future__ import annotations
+
+from layoutdsl.syntax.ast import Adjacency, Boundary, Room, Spec
+
+
+def room(room_id: str, w: float, h: float, *, rtype: str = "R", var: float = 0.3,
+         on_boundary: bool = False) -> Room:
+    """A room of target w x h whose sides may vary by `var` (a fraction) either way."""
+    long, short = max(w, h), min(w, h)
+    return Room(
+        id=room_id,
+        min_w=w * (1 - var),
+        max_w=w * (1 + var),
+        target_w=w,
+        min_h=h * (1 - var),
+        max_h=h * (1 + var),
+        target_h=h,
+        min_ar=1.0,
+        max_ar=max(1.5, 1.6 * long / short),
+        rtype=rtype,
+        label="CORRIDOR" if rtype == "C" else "ROOM",
+        on_boundary=on_boundary,
+    )
+
+
+def adjacent(a: str, b: str, door: float = 0.9, kind: str = "e") -> Adjacency:
+    return Adjacency(a, b, door, kind)
+
+
+def tree_spec() -> Spec:
+    """A corridor with six rooms hung on it and a second corridor with two more (a tree)."""
+    rooms = [room("C0", 14.0, 2.0, rtype="C", var=0.4), room("C1", 2.0, 8.0, rtype="C", var=0.4)]
+    rooms += [room(f"R{i}", 4.0, 3.5) for i in range(8)]
+    adjacencies = [adjacent("C0", f"R{i}") for i in range(6)]
+    adjacencies += [adjacent("C0", "C1", kind="i"), adjacent("C1", "R6"), adjacent("C1", "R7")]
+    return Spec("tree", tuple(rooms), Boundary(24.0, 18.0), tuple(adjacencies))
+
+
+def cycle_spec() -> Spec:
+    """Five rooms in a ring plus two rooms hanging off it: one independent cycle."""
+    ring = ["A", "B", "C", "D", "E"]
+    rooms = [room(name, 4.0, 4.0) for name in ring] + [room("F", 3.0, 3.0), room("G", 3.0, 3.0)]
+    adjacencies = [adjacent(a, b) for a, b in zip(ring, ring[1:] + ring[:1])]
+    adjacencies += [adjacent("A", "F"), adjacent("C", "G")]
+    return Spec("ring", tuple(rooms), Boundary(20.0, 20.0), tuple(adjacencies))

@@ -1,0 +1,74 @@
+"""solve.py: options from settings, progress reports, gap arithmetic."""
+
+from __future__ import annotations
+
+import math
+
+import pyomo.environ as pyo
+import pytest
+
+from layoutdsl.syntax.ast import Settings
+from layoutdsl.model import build_model
+from layoutdsl.solve import SolveOptions, _add_start, _translate, relative_gap, solve
+
+from spec_cases import room, spec
+from planted import planted
+
+
+def test_flags_override_settings_and_unset_flags_keep_them():
+    settings = Settings(time_limit=30, gap=0.05, seed=4, emphasis="feasibility", node_limit=100)
+    options = SolveOptions.from_settings(settings, time_limit=5, seed=None, emphasis=None)
+    assert (options.time_limit, options.gap, options.seed, options.emphasis, options.node_limit) == (
+        5, 0.05, 4, "feasibility", 100)
+
+
+def test_relative_gap_handles_signs_and_missing_bounds():
+    assert relative_gap(10.0, 9.0) == pytest.approx(0.1)
+    assert relative_gap(10.0, -5.0) == pytest.approx(1.5)  # SCIP's getGap says 1e20 here
+    assert relative_gap(0.0, 0.0) == 0.0
+    assert relative_gap(None, 1.0) is None
+    assert relative_gap(3.0, -math.inf) == math.inf
+
+
+def test_unknown_emphasis_is_refused():
+    spec, _ = planted(2, 1)
+    with pytest.raises(ValueError, match="emphasis"):
+        solve(build_model(spec), SolveOptions(time_limit=1, emphasis="fast", quiet=True))
+
+
+def test_long_solves_report_progress_about_every_second_and_a_half():
+    spec, _ = planted(6, 3)  # 39 rooms: SCIP from scratch will not finish in 2.5 s
+    calls = []
+    outcome = solve(build_model(spec), SolveOptions(time_limit=2.5), progress=lambda *a: calls.append(a))
+    assert outcome.seconds < 2.5 + 2.0
+    assert len(calls) >= 1
+    elapsed = [c[0] for c in calls]
+    assert elapsed == sorted(elapsed) and all(0 < e < 6 for e in elapsed)
+    for _, incumbent, gap in calls:
+        assert (incumbent is None) == (gap is None)
+
+
+def test_quiet_solves_report_nothing(capsys):
+    spec, _ = planted(2, 1)
+    solve(build_model(spec), SolveOptions(time_limit=1, quiet=True))
+    assert capsys.readouterr().err == ""
+
+
+def test_a_rejected_start_offered_to_one_scip_model_many_times_is_dropped_not_stored():
+    # The neighbourhood search re-solves one SCIP model every round. Offering a start SCIP
+    # rejects as a partial solution each round used to exhaust limits/maxorigsol (10) and
+    # crash a 43-room compile; without the fallback such a start is simply not offered.
+    two = spec("two", [room("A", (2, 3, 2.5), (2, 3, 2.5)), room("B", (2, 3, 2.5), (2, 3, 2.5))], 8, 8)
+    model = build_model(two)
+    for var in model.component_data_objects(ctype=pyo.Var):
+        var.set_value(var.lb if var.lb is not None else 0, skip_validation=True)
+    for r in ("A", "B"):  # both rooms on the same spot: the start violates non-overlap
+        model.x[r].set_value(0)
+        model.y[r].set_value(0)
+        model.w[r].set_value(2.5)
+        model.h[r].set_value(2.5)
+    interface, scip_model, _loader = _translate(model)
+    for _ in range(15):
+        scip_model.freeTransform()
+        assert _add_start(interface, scip_model, model, False, partial_fallback=False) is False
+    scip_model.freeProb()
