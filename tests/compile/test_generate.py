@@ -19,7 +19,7 @@ from layoutdsl.layout.verify import verify
 from layoutdsl.solve import SolveOptions
 from layoutdsl.syntax.ast import Boundary, Obstacle, Position
 
-from ._specs import cycle_spec, tree_spec
+from _specs import cycle_spec, tree_spec
 
 LAMUNIERE = Path(__file__).resolve().parents[2] / "examples" / "floorplans" / "school_Lamuniere1.xml"
 
