@@ -227,7 +227,9 @@ def compile_from_start(
         # (5.1) with o chosen per room as the thesis' model may choose it: the best
         # orientation that satisfies (5.4)-(5.6)
         objective = objective_of_rects(spec, rects)
-        if best is not None and objective >= best[0]:
+        # a tie (the solver's incumbent is the polished start, up to its tolerances) keeps
+        # the earlier candidate, so the layout reports the rule that stopped the solve
+        if best is not None and objective >= best[0] - 1e-6 * max(1.0, abs(best[0])):
             continue
         # SCIP's bound is a lower bound on (5.1) over all layouts, so it bounds every candidate
         gap = relative_gap(objective, outcome.bound) if outcome.bound is not None else None
