@@ -245,4 +245,5 @@ def test_compile_command_writes_numbered_variants(tmp_path):
     assert done.returncode == exitcodes.OK, done.stderr
     assert "2 of 2 variants" in done.stdout and "pairwise difference" in done.stdout
     names = sorted(p.name for p in (tmp_path / "out").iterdir())
-    assert names == ["office-1.layout.json", "office-1.xml", "office-2.layout.json", "office-2.xml"]
+    assert names == ["office-1.layout.json", "office-1.xml", "office-2.layout.json", "office-2.xml",
+                     "office-variants.json"]
