@@ -42,6 +42,11 @@ class SolveLimits:
     gap: float | None = None
     emphasis: str | None = None
     strategy: str = "auto"
+    search: bool = False
+    """Keep improving after the first verified layout (neighbourhoods, branch-and-bound). Off by
+    default: a building is then its first verified layout polished with its relations fixed, a
+    stopping rule that does not depend on the clock, so any worker gives the same bytes, in a
+    few seconds."""
 
 
 @dataclass(frozen=True, slots=True)

@@ -16,9 +16,9 @@ from layoutdsl.cli.argtypes import non_negative_float, non_negative_int, positiv
 from layoutdsl.cli.compile import EMPHASES, STRATEGIES
 
 BATCH_NODE_LIMIT = 20
-"""Default branch-and-bound node limit: a deterministic stopping rule, so the same batch gives
-the same bytes on any worker. The neighbourhood search before it stops after a full pass
-without an improvement (also deterministic)."""
+"""Default branch-and-bound node limit: a deterministic stopping rule where SCIP runs at all
+(with --search, or for a spec the construction finds no start for). By default a building is
+its first verified layout, polished: no search, nothing that stops on the clock."""
 
 BATCH_TIME_LIMIT = 300.0
 """Default time limit per building: only a safety net above the node limit; a building that
@@ -68,6 +68,9 @@ def add_parser(subparsers) -> None:
     parser.add_argument("--gap", type=non_negative_float, metavar="G", help="stop at this relative gap")
     parser.add_argument("--emphasis", choices=EMPHASES, help="SCIP emphasis")
     parser.add_argument("--strategy", choices=STRATEGIES, default="auto", help="as for compile")
+    parser.add_argument("--search", action="store_true",
+                        help="keep improving each building after its first verified layout (slower; the "
+                             "neighbourhood search stops on the clock, so outputs may then differ by worker)")
     parser.add_argument("--timeout", type=positive_float, metavar="S",
                         help="kill a building's process after S seconds (default: 2 x time limit + 60)")
     parser.add_argument("--emit", default="xml,png,world,map", metavar="FORMATS",
@@ -107,7 +110,7 @@ def run(args: argparse.Namespace) -> int:
     if outdir.exists() and not outdir.is_dir():
         return _error(f"`{outdir}` exists and is not a directory")
     limits = SolveLimits(time_limit=args.time_limit, node_limit=args.node_limit, solution_limit=args.solution_limit,
-                         gap=args.gap, emphasis=args.emphasis, strategy=args.strategy)
+                         gap=args.gap, emphasis=args.emphasis, strategy=args.strategy, search=args.search)
     timeout = args.timeout or 2 * args.time_limit + 60
     try:
         jobs = plan_jobs(args.inputs, args.variants, base_seed=args.seed, limits=limits,
