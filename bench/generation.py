@@ -283,6 +283,11 @@ def format_variants(plan: str, result: dict) -> str:
     return "\n".join(lines)
 
 
+def _matches(name: str, only: str | None) -> bool:
+    """Whether a plan's file name matches one of --only's comma-separated patterns."""
+    return not only or any(fnmatch.fnmatch(name, p) or p in name for p in only.split(","))
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -308,8 +313,7 @@ def main(argv: list[str] | None = None) -> int:
 
     if args.variants:
         for path in sorted(args.folder.glob("*.xml")):
-            if args.only and not any(fnmatch.fnmatch(path.name, pattern) or pattern in path.name
-                                     for pattern in args.only.split(",")):
+            if not _matches(path.name, args.only):
                 continue
             result = isolated(_variants_of_plan, str(path), args.variants, args.seed,
                               args.time_limit, args.workers, limit=args.time_limit * args.variants)
@@ -328,7 +332,7 @@ def main(argv: list[str] | None = None) -> int:
         if not args.json:
             emit(header())
         for path in sorted(args.folder.glob("*.xml")):
-            if args.only and not (fnmatch.fnmatch(path.name, args.only) or args.only in path.name):
+            if not _matches(path.name, args.only):
                 continue
             row = {"plan": path.stem}
             row.update(isolated(_compile_plan, str(path), args.time_limit, args.seed,
