@@ -752,6 +752,9 @@ GRAPH_TRY_SECONDS = 1.5
 BLOCK_SHARE = 0.3
 """Share of the construction's time the cycle blocks may take to solve (block_templates)."""
 
+BLOCK_MIN_SECONDS = 1.5
+"""Least time one cycle block gets, as long as the construction keeps twice that for itself."""
+
 
 def block_spec(spec: Spec, block: frozenset[str]) -> Spec:
     """The spec of one cycle block alone: its rooms, the adjacencies among them, and the
@@ -788,12 +791,15 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
     templates = []
     for block in blocks:
         left = budget_end - time.monotonic()
-        if left <= 0.05:
-            break
-        share = max(0.5, left * len(block) / total)
+        # a block's first repair rounds take about a second: less than BLOCK_MIN_SECONDS
+        # solves nothing (measured: every 5-room block of rockislandsecondfloor failed with
+        # 0.4 s each and all solved with 1.3 s), so small budgets borrow from the rest
+        share = max(BLOCK_MIN_SECONDS, left * len(block) / total)
         total -= len(block)
+        if deadline - time.monotonic() < 2 * share:
+            break
         rects = construct_start(block_spec(spec, block), seed=seed, use_hints=False,
-                                deadline=min(budget_end, time.monotonic() + share))
+                                deadline=time.monotonic() + share)
         _debug(f"block of {len(block)} rooms: {'solved' if rects else 'not solved'}")
         if rects is not None:
             templates.append(rects)
