@@ -32,7 +32,7 @@ import os
 import random
 import sys
 import time
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
 from layoutdsl.compile.generate import RoomSizes, generate_geometry
@@ -757,18 +757,8 @@ BLOCK_MIN_SECONDS = 1.5
 
 
 def block_spec(spec: Spec, block: frozenset[str]) -> Spec:
-    """The spec of one cycle block alone: its rooms, the adjacencies among them, and the
-    positions and connections of its rooms, in the whole boundary."""
-    return replace(
-        spec,
-        name=f"{spec.name}-block",
-        rooms=tuple(room for room in spec.rooms if room.id in block),
-        adjacencies=tuple(a for a in spec.adjacencies if a.a in block and a.b in block),
-        positions=tuple(p for p in spec.positions if p.room in block),
-        connections=tuple(c for c in spec.connections if c.room in block),
-        clusters=(),
-        hints=(),
-    )
+    """The spec of one cycle block alone: its rooms and the constraints among them."""
+    return spec.restricted_to(block, f"{spec.name}-block")
 
 
 def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Rect]]:

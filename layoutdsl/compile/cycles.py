@@ -70,18 +70,7 @@ def subproblem(spec: Spec, cycle: list[str]) -> Spec:
     keep = set(cycle)
     for room_id in cycle:
         keep.update(graph.neighbors(room_id))
-    return replace(
-        spec,
-        name=f"{spec.name}-cycle",
-        rooms=tuple(room for room in spec.rooms if room.id in keep),
-        adjacencies=tuple(a for a in spec.adjacencies if a.a in keep and a.b in keep),
-        positions=tuple(p for p in spec.positions if p.room in keep),
-        connections=tuple(c for c in spec.connections if c.room in keep),
-        clusters=tuple(
-            c for c in spec.clusters if all(member.room in keep for member in c.members)
-        ),
-        hints=tuple(h for h in spec.hints if h.room in keep),
-    )
+    return spec.restricted_to(keep, f"{spec.name}-cycle")
 
 
 def cycle_cluster(

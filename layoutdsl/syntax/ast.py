@@ -9,7 +9,7 @@ compares content only.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from types import MappingProxyType
 
 from layoutdsl.diagnostics.source import Span
@@ -227,3 +227,18 @@ class Spec:
     @property
     def room_ids(self) -> tuple[str, ...]:
         return tuple(room.id for room in self.rooms)
+
+    def restricted_to(self, keep, name: str) -> Spec:
+        """The spec of some rooms alone: those rooms, in the same boundary, with every
+        constraint among them only (the sub-problems of cycle decomposition and generation)."""
+        keep = set(keep)
+        return replace(
+            self,
+            name=name,
+            rooms=tuple(room for room in self.rooms if room.id in keep),
+            adjacencies=tuple(a for a in self.adjacencies if a.a in keep and a.b in keep),
+            positions=tuple(p for p in self.positions if p.room in keep),
+            connections=tuple(c for c in self.connections if c.room in keep),
+            clusters=tuple(c for c in self.clusters if all(member.room in keep for member in c.members)),
+            hints=tuple(h for h in self.hints if h.room in keep),
+        )
