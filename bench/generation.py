@@ -248,6 +248,7 @@ def _variants_of_plan(path: str, n: int, seed: int, time_limit: float, workers: 
     original, area and fill; pairwise differences."""
     from layoutdsl.solve import SolveOptions
     from layoutdsl.compile.variants import compile_variants
+    from layoutdsl.evaluate.difference import layout_centres, pairwise_differences
 
     spec, area, original_fill, centres = _original(Path(path))
     began = time.monotonic()
@@ -259,7 +260,8 @@ def _variants_of_plan(path: str, n: int, seed: int, time_limit: float, workers: 
         if layout is not None:
             row.update(_layout_row(spec, layout, area, original_fill, centres))
         rows.append(row)
-    pairs = sorted(result.differences.values())
+    found = [layout_centres(layout) for layout in result.layouts if layout is not None]
+    pairs = sorted(pairwise_differences(found).values())
     return {"rooms": len(spec.rooms), "seconds": round(time.monotonic() - began, 2),
             "variants": rows, "pairwise_min": round(pairs[0], 4) if pairs else None,
             "pairwise_median": round(statistics.median(pairs), 4) if pairs else None,
