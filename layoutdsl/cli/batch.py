@@ -20,9 +20,10 @@ BATCH_NODE_LIMIT = 20
 (with --search, or for a spec the construction finds no start for). By default a building is
 its first verified layout, polished: no search, nothing that stops on the clock."""
 
-BATCH_TIME_LIMIT = 300.0
-"""Default time limit per building: only a safety net above the node limit; a building that
-reaches it is still written, but its solve_status says `time_limit` (timing-dependent)."""
+BATCH_TIME_LIMIT = 60.0
+"""Default time limit per building, as for compile: a building without a verified layout by
+then is recorded as failed (E902). With --search, a building that reaches it is still
+written, but its solve_status says `time_limit` (timing-dependent)."""
 
 MAX_FAILURES_SHOWN = 10
 
