@@ -647,23 +647,9 @@ def _repair(
     round, which starts from the previous solution. Zero stretch ends the repair; a final
     LP with those relations then brings the sizes towards their targets.
     """
-    options: dict[Pair, tuple[str, ...]] = {
-        pair: problem.axis_choices(geometry, pair)[:1] for pair in problem.pairs
-    }
-    if free_defects:
-        # where the geometry is wrong (rooms overlap, or a door's rooms do not touch) its
-        # relation is a guess: let the first round choose the axis (measured on generated
-        # geometries: fewer stalled rounds)
-        for pair in problem.pairs:
-            distance = problem.distance(geometry, pair)
-            wall = problem.walls.get(frozenset(pair))
-            if distance < problem.walldim - 1e-6 or (wall and distance > problem.walldim + 1e-3):
-                options[pair] = _widen(problem, geometry, pair, options[pair])
+    options = _first_options(problem, geometry, free_defects)
     start: _Outcome | None = None
-    neighbours: dict[str, set[str]] = {}
-    for adj in problem.spec.adjacencies:
-        neighbours.setdefault(adj.a, set()).add(adj.b)
-        neighbours.setdefault(adj.b, set()).add(adj.a)
+    neighbours = _adjacency_neighbours(problem.spec)
     best_total = math.inf
     stalls = 0
     orientations = {
@@ -681,18 +667,7 @@ def _repair(
         if outcome is None:
             return None
         if not outcome.stretched:
-            final_options = {pair: (direction,) for pair, direction in outcome.chosen.items()}
-            final = _solve_model(problem, geometry, final_options, mode="final",
-                                 seconds=max(0.5, min(5.0, deadline - time.monotonic())),
-                                 seed=seed, orientations=outcome.orientations)
-            for rects in (final.rects if final else None, outcome.rects):
-                if rects is None:
-                    continue
-                problems = check_start(problem.spec, rects)
-                if not problems:
-                    return rects
-                _debug(f"    rejected: {problems[:3]}")
-            return None
+            return _final_layout(problem, geometry, outcome, deadline, seed)
         _debug(f"  round {round_index}: {len(outcome.stretched)} stretched, "
                f"total {sum(outcome.stretched.values()):.2f} m: "
                + ", ".join(f"{a}-{b} {options[(a, b)]} {v:.2f}"
@@ -717,18 +692,71 @@ def _repair(
         for _ in range(stalls):
             blamed |= {n for thing in blamed for n in neighbours.get(thing, ())}
         orientations = dict(outcome.orientations)
-        for pair in outcome.stretched:
-            options[pair] = _widen(problem, geometry, pair, options[pair])
-        for pair in problem.pairs:
-            a, b = pair
-            if not (a in blamed or b in blamed):
-                continue
-            if len(options[pair]) == 1 and problem.distance(geometry, pair) <= radius:
-                options[pair] = _widen(problem, geometry, pair, options[pair])
-            elif stalls and a in blamed and b in blamed:
-                options[pair] = _widen(problem, geometry, pair, options[pair])
+        _free_blamed_pairs(problem, geometry, options, outcome, blamed, radius, stalls)
         start = outcome
     return None
+
+
+def _first_options(problem: _Problem, geometry: dict[str, Rect],
+                   free_defects: bool) -> dict[Pair, tuple[str, ...]]:
+    """Each pair's allowed directions in the first round: the geometry's clearer one."""
+    options: dict[Pair, tuple[str, ...]] = {
+        pair: problem.axis_choices(geometry, pair)[:1] for pair in problem.pairs
+    }
+    if free_defects:
+        # where the geometry is wrong (rooms overlap, or a door's rooms do not touch) its
+        # relation is a guess: let the first round choose the axis (measured on generated
+        # geometries: fewer stalled rounds)
+        for pair in problem.pairs:
+            distance = problem.distance(geometry, pair)
+            wall = problem.walls.get(frozenset(pair))
+            if distance < problem.walldim - 1e-6 or (wall and distance > problem.walldim + 1e-3):
+                options[pair] = _widen(problem, geometry, pair, options[pair])
+    return options
+
+
+def _adjacency_neighbours(spec: Spec) -> dict[str, set[str]]:
+    """Room id -> the rooms it shares a door with."""
+    neighbours: dict[str, set[str]] = {}
+    for adj in spec.adjacencies:
+        neighbours.setdefault(adj.a, set()).add(adj.b)
+        neighbours.setdefault(adj.b, set()).add(adj.a)
+    return neighbours
+
+
+def _final_layout(problem: _Problem, geometry: dict[str, Rect], outcome: _Outcome,
+                  deadline: float, seed: int) -> dict[str, Rect] | None:
+    """The relations of a zero-stretch round with the sizes brought towards their targets
+    (else that round's own rectangles), if they pass `check_start`; None otherwise."""
+    final_options = {pair: (direction,) for pair, direction in outcome.chosen.items()}
+    final = _solve_model(problem, geometry, final_options, mode="final",
+                         seconds=max(0.5, min(5.0, deadline - time.monotonic())),
+                         seed=seed, orientations=outcome.orientations)
+    for rects in (final.rects if final else None, outcome.rects):
+        if rects is None:
+            continue
+        problems = check_start(problem.spec, rects)
+        if not problems:
+            return rects
+        _debug(f"    rejected: {problems[:3]}")
+    return None
+
+
+def _free_blamed_pairs(problem: _Problem, geometry: dict[str, Rect],
+                       options: dict[Pair, tuple[str, ...]], outcome: _Outcome,
+                       blamed: set[str], radius: float, stalls: int) -> None:
+    """Widen, in place, the options of the stretched pairs and of the blamed rooms' pairs
+    within `radius` (after a stall, every pair of two blamed rooms)."""
+    for pair in outcome.stretched:
+        options[pair] = _widen(problem, geometry, pair, options[pair])
+    for pair in problem.pairs:
+        a, b = pair
+        if not (a in blamed or b in blamed):
+            continue
+        if len(options[pair]) == 1 and problem.distance(geometry, pair) <= radius:
+            options[pair] = _widen(problem, geometry, pair, options[pair])
+        elif stalls and a in blamed and b in blamed:
+            options[pair] = _widen(problem, geometry, pair, options[pair])
 
 
 def _widen(problem: _Problem, geometry: dict[str, Rect], pair: Pair,
