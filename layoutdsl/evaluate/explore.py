@@ -279,6 +279,11 @@ def explore(
         if aborted:
             continue
         heading = _look_at_goal(run, goal, pos, heading, sense)
+    return _result(run, target_region, target_cells, hit_limit)
+
+
+def _result(run: _Run, target_region: np.ndarray, target_cells: int, hit_limit: bool) -> ExplorationResult:
+    """What the run cost, and how much of the reachable free space it saw."""
     coverage = int(((run.known == FREE) & target_region).sum()) / max(1, target_cells)
     return ExplorationResult(
         reached_target=run.target_distance is not None,
@@ -289,7 +294,7 @@ def explore(
         final_coverage=coverage,
         goals=run.goals,
         blacklisted=run.blacklisted,
-        reachable_free_m2=target_cells * resolution * resolution,
+        reachable_free_m2=target_cells * run.resolution * run.resolution,
         hit_goal_limit=hit_limit,
         trajectory=tuple(run.trajectory),
     )
