@@ -234,11 +234,36 @@ def _solve_model(
     if mode not in ("repair", "final"):
         raise ValueError(f"unknown mode {mode!r}")
     repair = mode == "repair"
-    from pyscipopt import Model, quicksum
+    from pyscipopt import quicksum
 
-    spec = problem.spec
-    settings = spec.settings
-    width, height, big_m = problem.width, problem.height, problem.big_m
+    # the variables and constraints are added in one fixed order (rooms, boundary sides,
+    # points, clusters, pairs): SCIP's search, and so the layout, depends on that order
+    model = _scip_model(repair, seconds, seed, feasibility_emphasis)
+    rooms = _add_rooms(model, problem, orientations, turnable, with_deviation=not repair)
+    _add_on_boundary(model, problem, rooms.boxes)
+    _add_covered_points(model, problem.spec, rooms.boxes)
+    _add_clusters(model, problem, rooms.boxes)
+    pairs = _add_pair_relations(model, problem, rooms.boxes, options)
+
+    if repair:
+        model.setObjective(quicksum(pairs.penalty), "minimize")
+    else:
+        model.setObjective(quicksum(rooms.deviation) + FINAL_STRETCH_COST * quicksum(pairs.penalty),
+                           "minimize")
+    if start is not None:
+        _add_start(model, start, options)
+    model.optimize()
+    status = model.getStatus()
+    _debug(f"    {mode} model: {status} in "
+           f"{model.getSolvingTime():.2f}s, {len(pairs.binaries)} free pairs, {model.getNSols()} sols")
+    if model.getNSols() == 0:
+        return None
+    return _read_outcome(model, problem.spec, options, rooms, pairs, orientations)
+
+
+def _scip_model(repair: bool, seconds: float, seed: int, feasibility_emphasis: bool):
+    """An empty, quiet SCIP model with the relation model's limits and tolerances."""
+    from pyscipopt import Model
 
     model = Model("construct")
     model.hideOutput()
@@ -257,43 +282,70 @@ def _solve_model(
             model.setEmphasis(SCIP_PARAMEMPHASIS.FEASIBILITY)
     else:
         model.setParam("limits/gap", 1e-4)
+    return model
 
-    boxes: dict[str, _Box] = {}
-    deviation = []
-    orientation_vars: dict[str, object] = {}
-    for room in spec.rooms:
+
+@dataclass
+class _RoomVars:
+    """What `_add_rooms` put into a model: every room's and obstacle's box, and more."""
+
+    boxes: dict[str, _Box]
+    deviation: list
+    """rho_error-weighted deviations of the sizes from their targets (final mode only)."""
+    orientation_vars: dict[str, object]
+    """Room id -> the binary o of a turnable room (1: its long side lies along x)."""
+
+
+def _add_rooms(model, problem: _Problem, orientations: dict[str, bool], turnable: frozenset[str],
+               *, with_deviation: bool) -> _RoomVars:
+    """Each room's box inside the boundary, with its size and aspect-ratio bounds."""
+    width, height = problem.width, problem.height
+    rooms = _RoomVars({}, [], {})
+    for room in problem.spec.rooms:
         sizes = RoomSizes.of(room)
         long_x = orientations[room.id]
         x = model.addVar(f"x_{room.id}", lb=0.0, ub=width)
         y = model.addVar(f"y_{room.id}", lb=0.0, ub=height)
         if room.id in turnable:
             w, h, targets = _turnable_sizes(model, room, sizes)
-            orientation_vars[room.id] = targets[2]
+            rooms.orientation_vars[room.id] = targets[2]
             targets = targets[:2]
         else:
-            w_lo, w_hi, h_lo, h_hi = sizes.bounds(long_x)
-            w_lo, h_lo = w_lo + SAFETY, h_lo + SAFETY
-            w_hi, h_hi = max(w_lo, w_hi - SAFETY), max(h_lo, h_hi - SAFETY)
-            w = model.addVar(f"w_{room.id}", lb=w_lo, ub=w_hi)
-            h = model.addVar(f"h_{room.id}", lb=h_lo, ub=h_hi)
-            if not sizes.corridor:
-                long_side, short_side = (w, h) if long_x else (h, w)
-                model.addCons(sizes.min_ar * short_side + SAFETY <= long_side)
-                model.addCons(long_side <= sizes.max_ar * short_side - SAFETY)
-            targets = sizes.targets(long_x)
+            w, h, targets = _fixed_orientation_sizes(model, room, sizes, long_x)
         model.addCons(x + w <= width - SAFETY)
         model.addCons(y + h <= height - SAFETY)
-        boxes[room.id] = _Box(x, y, w, h)
-        if not repair:
+        rooms.boxes[room.id] = _Box(x, y, w, h)
+        if with_deviation:
             for var, target in zip((w, h), targets):
                 dev = model.addVar(f"d_{var.name}", lb=0.0)
                 model.addCons(dev >= var - target)
                 model.addCons(dev >= target - var)
-                deviation.append(room.rho_error * dev)
+                rooms.deviation.append(room.rho_error * dev)
     for ob_id, (ox, oy, ow, oh) in problem.obstacles.items():
-        boxes[ob_id] = _Box(ox, oy, ow, oh)
+        rooms.boxes[ob_id] = _Box(ox, oy, ow, oh)
+    return rooms
 
-    for room in spec.rooms:
+
+def _fixed_orientation_sizes(model, room: Room, sizes: RoomSizes, long_x: bool):
+    """w, h and (target w, target h) of a room whose long side stays along x (long_x) or y."""
+    w_lo, w_hi, h_lo, h_hi = sizes.bounds(long_x)
+    w_lo, h_lo = w_lo + SAFETY, h_lo + SAFETY
+    w_hi, h_hi = max(w_lo, w_hi - SAFETY), max(h_lo, h_hi - SAFETY)
+    w = model.addVar(f"w_{room.id}", lb=w_lo, ub=w_hi)
+    h = model.addVar(f"h_{room.id}", lb=h_lo, ub=h_hi)
+    if not sizes.corridor:
+        long_side, short_side = (w, h) if long_x else (h, w)
+        model.addCons(sizes.min_ar * short_side + SAFETY <= long_side)
+        model.addCons(long_side <= sizes.max_ar * short_side - SAFETY)
+    return w, h, sizes.targets(long_x)
+
+
+def _add_on_boundary(model, problem: _Problem, boxes: dict[str, _Box]) -> None:
+    """An onB room touches at least one side of the boundary (one binary per side)."""
+    from pyscipopt import quicksum
+
+    width, height, big_m = problem.width, problem.height, problem.big_m
+    for room in problem.spec.rooms:
         if not room.on_boundary:
             continue
         box = boxes[room.id]
@@ -304,6 +356,9 @@ def _solve_model(
         model.addCons(box.y + box.h >= height - SAFETY - big_m * (1 - sides[3]))
         model.addCons(quicksum(sides) >= 1)
 
+
+def _add_covered_points(model, spec: Spec, boxes: dict[str, _Box]) -> None:
+    """A room covers its fixed positions and both ends of its connections, strictly."""
     points = [(p.room, p.x, p.y) for p in spec.positions]
     for c in spec.connections:
         points += [(c.room, c.x1, c.y1), (c.room, c.x2, c.y2)]
@@ -313,9 +368,13 @@ def _solve_model(
         model.addCons(box.x + box.w >= px + SAFETY)
         model.addCons(box.y <= py - SAFETY)
         model.addCons(box.y + box.h >= py + SAFETY)
-    margin = settings.cluster_margin
-    reach = 2 * max(width, height) + 10.0
-    for cluster in spec.clusters:
+
+
+def _add_clusters(model, problem: _Problem, boxes: dict[str, _Box]) -> None:
+    """Each cluster's members keep their relative points within the margin of a free origin."""
+    margin = problem.spec.settings.cluster_margin
+    reach = 2 * max(problem.width, problem.height) + 10.0
+    for cluster in problem.spec.clusters:
         cx = model.addVar(f"cx_{cluster.id}", lb=-reach, ub=reach)
         cy = model.addVar(f"cy_{cluster.id}", lb=-reach, ub=reach)
         for member in cluster.members:
@@ -325,52 +384,63 @@ def _solve_model(
             model.addCons(box.y - margin + SAFETY <= member.y + cy)
             model.addCons(box.y + box.h + margin - SAFETY >= member.y + cy)
 
+
+@dataclass
+class _PairVars:
+    """What `_add_pair_relations` put into a model, by pair."""
+
+    binaries: dict[Pair, list]
+    """The direction switches of each pair with more than one allowed direction."""
+    stretches: dict[Pair, object]
+    penalty: list
+    """Each pair's stretch, adjacencies weighted by ADJACENCY_STRETCH_WEIGHT."""
+
+
+def _add_pair_relations(model, problem: _Problem, boxes: dict[str, _Box],
+                        options: dict[Pair, tuple[str, ...]]) -> _PairVars:
+    """Each pair lies in one of its allowed directions (apart, or adjacent along a wall),
+    up to a stretch variable that the objective prices."""
+    from pyscipopt import quicksum
+
     gap = problem.walldim + SAFETY
-    binaries: dict[Pair, list] = {}
-    stretches: dict[Pair, object] = {}
-    penalty = []
+    pairs = _PairVars({}, {}, [])
     for pair, allowed in options.items():
         a, b = pair
         wall = problem.walls.get(frozenset(pair))
         stretch = model.addVar(f"s_{a}_{b}", lb=0.0)
-        stretches[pair] = stretch
-        penalty.append((ADJACENCY_STRETCH_WEIGHT if wall else 1.0) * stretch)
+        pairs.stretches[pair] = stretch
+        pairs.penalty.append((ADJACENCY_STRETCH_WEIGHT if wall else 1.0) * stretch)
         if len(allowed) == 1:
             switches = [None]
         else:
             switches = [model.addVar(f"z_{a}_{b}_{d}", vtype="B") for d in allowed]
-            binaries[pair] = switches
+            pairs.binaries[pair] = switches
             model.addCons(quicksum(switches) >= 1)
         for direction, on in zip(allowed, switches):
-            slack = stretch if on is None else stretch + big_m * (1 - on)
+            slack = stretch if on is None else stretch + problem.big_m * (1 - on)
             if wall is None:
                 _add_direction(model, boxes[a], boxes[b], direction, gap, slack)
             else:
                 _add_adjacent(model, boxes[a], boxes[b], direction, problem.walldim, wall, slack)
+    return pairs
 
-    if repair:
-        model.setObjective(quicksum(penalty), "minimize")
-    else:
-        model.setObjective(quicksum(deviation) + FINAL_STRETCH_COST * quicksum(penalty), "minimize")
-    if start is not None:
-        _add_start(model, start, options)
-    model.optimize()
-    status = model.getStatus()
-    _debug(f"    {mode} model: {status} in "
-           f"{model.getSolvingTime():.2f}s, {len(binaries)} free pairs, {model.getNSols()} sols")
-    if model.getNSols() == 0:
-        return None
+
+def _read_outcome(model, spec: Spec, options: dict[Pair, tuple[str, ...]], rooms: _RoomVars,
+                  pairs: _PairVars, orientations: dict[str, bool]) -> _Outcome:
+    """The best solution of a solved model as rectangles, chosen directions and stretches."""
     solution = model.getBestSol()
     chosen: dict[Pair, str] = {}
     for pair, allowed in options.items():
-        switches = binaries.get(pair)
+        switches = pairs.binaries.get(pair)
         if switches is None:
             chosen[pair] = allowed[0]
         else:
             values = [solution[on] for on in switches]
             chosen[pair] = allowed[max(range(len(allowed)), key=lambda i: values[i])]
+    stretches = pairs.stretches
     stretched = {pair: solution[var] for pair, var in stretches.items() if solution[var] > 1e-6}
     _debug(f"    max stretch {max((solution[v] for v in stretches.values()), default=0):.3g}")
+    boxes = rooms.boxes
     rects = {
         room.id: (solution[boxes[room.id].x], solution[boxes[room.id].y],
                   solution[boxes[room.id].w], solution[boxes[room.id].h])
@@ -378,7 +448,7 @@ def _solve_model(
     }
     values = {var.name: solution[var] for var in model.getVars()}
     turned = dict(orientations)
-    for room_id, var in orientation_vars.items():
+    for room_id, var in rooms.orientation_vars.items():
         turned[room_id] = solution[var] > 0.5
     return _Outcome(rects, chosen, stretched, values, turned)
 
@@ -577,23 +647,9 @@ def _repair(
     round, which starts from the previous solution. Zero stretch ends the repair; a final
     LP with those relations then brings the sizes towards their targets.
     """
-    options: dict[Pair, tuple[str, ...]] = {
-        pair: problem.axis_choices(geometry, pair)[:1] for pair in problem.pairs
-    }
-    if free_defects:
-        # where the geometry is wrong (rooms overlap, or a door's rooms do not touch) its
-        # relation is a guess: let the first round choose the axis (measured on generated
-        # geometries: fewer stalled rounds)
-        for pair in problem.pairs:
-            distance = problem.distance(geometry, pair)
-            wall = problem.walls.get(frozenset(pair))
-            if distance < problem.walldim - 1e-6 or (wall and distance > problem.walldim + 1e-3):
-                options[pair] = _widen(problem, geometry, pair, options[pair])
+    options = _first_options(problem, geometry, free_defects)
     start: _Outcome | None = None
-    neighbours: dict[str, set[str]] = {}
-    for adj in problem.spec.adjacencies:
-        neighbours.setdefault(adj.a, set()).add(adj.b)
-        neighbours.setdefault(adj.b, set()).add(adj.a)
+    neighbours = _adjacency_neighbours(problem.spec)
     best_total = math.inf
     stalls = 0
     orientations = {
@@ -611,18 +667,7 @@ def _repair(
         if outcome is None:
             return None
         if not outcome.stretched:
-            final_options = {pair: (direction,) for pair, direction in outcome.chosen.items()}
-            final = _solve_model(problem, geometry, final_options, mode="final",
-                                 seconds=max(0.5, min(5.0, deadline - time.monotonic())),
-                                 seed=seed, orientations=outcome.orientations)
-            for rects in (final.rects if final else None, outcome.rects):
-                if rects is None:
-                    continue
-                problems = check_start(problem.spec, rects)
-                if not problems:
-                    return rects
-                _debug(f"    rejected: {problems[:3]}")
-            return None
+            return _final_layout(problem, geometry, outcome, deadline, seed)
         _debug(f"  round {round_index}: {len(outcome.stretched)} stretched, "
                f"total {sum(outcome.stretched.values()):.2f} m: "
                + ", ".join(f"{a}-{b} {options[(a, b)]} {v:.2f}"
@@ -647,18 +692,71 @@ def _repair(
         for _ in range(stalls):
             blamed |= {n for thing in blamed for n in neighbours.get(thing, ())}
         orientations = dict(outcome.orientations)
-        for pair in outcome.stretched:
-            options[pair] = _widen(problem, geometry, pair, options[pair])
-        for pair in problem.pairs:
-            a, b = pair
-            if not (a in blamed or b in blamed):
-                continue
-            if len(options[pair]) == 1 and problem.distance(geometry, pair) <= radius:
-                options[pair] = _widen(problem, geometry, pair, options[pair])
-            elif stalls and a in blamed and b in blamed:
-                options[pair] = _widen(problem, geometry, pair, options[pair])
+        _free_blamed_pairs(problem, geometry, options, outcome, blamed, radius, stalls)
         start = outcome
     return None
+
+
+def _first_options(problem: _Problem, geometry: dict[str, Rect],
+                   free_defects: bool) -> dict[Pair, tuple[str, ...]]:
+    """Each pair's allowed directions in the first round: the geometry's clearer one."""
+    options: dict[Pair, tuple[str, ...]] = {
+        pair: problem.axis_choices(geometry, pair)[:1] for pair in problem.pairs
+    }
+    if free_defects:
+        # where the geometry is wrong (rooms overlap, or a door's rooms do not touch) its
+        # relation is a guess: let the first round choose the axis (measured on generated
+        # geometries: fewer stalled rounds)
+        for pair in problem.pairs:
+            distance = problem.distance(geometry, pair)
+            wall = problem.walls.get(frozenset(pair))
+            if distance < problem.walldim - 1e-6 or (wall and distance > problem.walldim + 1e-3):
+                options[pair] = _widen(problem, geometry, pair, options[pair])
+    return options
+
+
+def _adjacency_neighbours(spec: Spec) -> dict[str, set[str]]:
+    """Room id -> the rooms it shares a door with."""
+    neighbours: dict[str, set[str]] = {}
+    for adj in spec.adjacencies:
+        neighbours.setdefault(adj.a, set()).add(adj.b)
+        neighbours.setdefault(adj.b, set()).add(adj.a)
+    return neighbours
+
+
+def _final_layout(problem: _Problem, geometry: dict[str, Rect], outcome: _Outcome,
+                  deadline: float, seed: int) -> dict[str, Rect] | None:
+    """The relations of a zero-stretch round with the sizes brought towards their targets
+    (else that round's own rectangles), if they pass `check_start`; None otherwise."""
+    final_options = {pair: (direction,) for pair, direction in outcome.chosen.items()}
+    final = _solve_model(problem, geometry, final_options, mode="final",
+                         seconds=max(0.5, min(5.0, deadline - time.monotonic())),
+                         seed=seed, orientations=outcome.orientations)
+    for rects in (final.rects if final else None, outcome.rects):
+        if rects is None:
+            continue
+        problems = check_start(problem.spec, rects)
+        if not problems:
+            return rects
+        _debug(f"    rejected: {problems[:3]}")
+    return None
+
+
+def _free_blamed_pairs(problem: _Problem, geometry: dict[str, Rect],
+                       options: dict[Pair, tuple[str, ...]], outcome: _Outcome,
+                       blamed: set[str], radius: float, stalls: int) -> None:
+    """Widen, in place, the options of the stretched pairs and of the blamed rooms' pairs
+    within `radius` (after a stall, every pair of two blamed rooms)."""
+    for pair in outcome.stretched:
+        options[pair] = _widen(problem, geometry, pair, options[pair])
+    for pair in problem.pairs:
+        a, b = pair
+        if not (a in blamed or b in blamed):
+            continue
+        if len(options[pair]) == 1 and problem.distance(geometry, pair) <= radius:
+            options[pair] = _widen(problem, geometry, pair, options[pair])
+        elif stalls and a in blamed and b in blamed:
+            options[pair] = _widen(problem, geometry, pair, options[pair])
 
 
 def _widen(problem: _Problem, geometry: dict[str, Rect], pair: Pair,

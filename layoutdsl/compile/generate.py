@@ -321,6 +321,8 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
     corridor = {room.id: room.is_corridor for room in spec.rooms}
     on_boundary = {room.id: room.on_boundary for room in spec.rooms}
     degree = {room_id: len(ns) for room_id, ns in neighbours.items()}
+    # the draws from rng stay in this order (tie-breaks, pinned rooms' orientations, then
+    # each placement): the same seed gives the same geometry
     tiebreak = {room.id: rng.random() for room in spec.rooms}
     placement = _Placement(width, height, walldim)
     for ob in boundary.obstacles:
@@ -341,19 +343,7 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
 
     unplaced = [room.id for room in spec.rooms if room.id not in geometry]
     while unplaced:
-        placed_count = {
-            r: sum(1 for n in neighbours[r] if n in geometry) for r in unplaced
-        }
-        frontier = [r for r in unplaced if placed_count[r] > 0]
-        if frontier:
-            # corridors first, then rooms closing cycles (several placed neighbours), leaves last
-            # (bigger rooms before smaller ones: small ones fit in the gaps that are left)
-            room_id = max(frontier, key=lambda r: (corridor[r], min(placed_count[r], 2),
-                                                   degree[r], sides[r][0] * sides[r][1],
-                                                   tiebreak[r]))
-        else:
-            # a new component (or the first room): its best-connected room, corridor first
-            room_id = max(unplaced, key=lambda r: (corridor[r], degree[r], tiebreak[r]))
+        room_id = _next_room(unplaced, geometry, neighbours, corridor, degree, sides, tiebreak)
         pending = [t for t in templates if room_id in t and not all(r in geometry for r in t)]
         if pending:
             # a cycle block: all its rooms at once, as they were solved together
@@ -364,52 +354,94 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
                     unplaced.remove(other)
             continue
         unplaced.remove(room_id)
-        # space kept free for the rooms still to hang off each placed room (and this one)
-        area = {r: sides[r][0] * sides[r][1] / max(1, degree[r]) for r in unplaced}
-        own_depth = _halo_depth(sides[room_id], [area[n] for n in neighbours[room_id]
-                                                 if n in area], sides, neighbours[room_id])
-        foreign = []
-        for other, rect in geometry.items():
-            # neighbours too: a corridor that touches another along its whole side takes
-            # the side the other's rooms need; touching at its end costs little of it
-            depth = _halo_depth(rect[2:], [area[n] for n in neighbours[other] if n in area],
-                                sides, neighbours[other])
-            if depth > 0:
-                foreign.append(_grow(np.array(rect), depth))
-        # cycle partners: placed rooms that share an unplaced neighbour with this one; that
-        # neighbour will have to touch both, so this room should land within its reach
-        partners = {}
-        for n in neighbours[room_id]:
-            if n in geometry:
-                continue
-            for p in neighbours[n]:
-                if p in geometry:
-                    partners[p] = max(partners.get(p, 0.0), sides[n][1])
+        own_depth, foreign = _halos(room_id, unplaced, geometry, sides, neighbours, degree)
+        partners = _cycle_partners(room_id, geometry, sides, neighbours)
         put(room_id, _best_place(room_id, placement, sides[room_id], neighbours[room_id],
                                  walls, geometry, on_boundary[room_id], rng, own_depth,
-                                 np.array(foreign).reshape(-1, 4), partners))
+                                 foreign, partners))
     fixed = set(_fixed_points(spec))
     shift_fixed = set(fixed)
     # the rooms of a placed block keep the places they were solved in: moving one alone
     # would only break the contacts that close its cycles
     fixed |= {room_id for t in templates for room_id in t if room_id in geometry}
     if not shift_fixed and len(placement.rects):
-        # the building grew from a drawn first room and may stick out on one side, or
-        # touch it, while there is room on the other: centre it (as a whole) in the
-        # boundary, so the repair has slack on every side to push conflicts out into
-        x0, y0, x1, y1 = placement.bbox()
-        dx = (width - x1 - x0) / 2
-        dy = (height - y1 - y0) / 2
-        if dx or dy:
-            shift = np.array([dx, dy, 0.0, 0.0])
-            placement.rects += shift
-            placement.blockers[len(placement.blockers) - len(placement.rects):] += shift
-            for room_id, (x, y, w, h) in geometry.items():
-                geometry[room_id] = (x + dx, y + dy, w, h)
+        _centre_in_boundary(geometry, placement, width, height)
     for _ in range(REPLACE_PASSES):
         if not _replace_worst(geometry, placement, sides, neighbours, walls, on_boundary, fixed):
             break
     return geometry, sum(_room_defects(geometry, placement, neighbours, walls).values())
+
+
+def _next_room(unplaced: list[str], geometry: dict[str, Rect], neighbours: dict[str, list[str]],
+               corridor: dict[str, bool], degree: dict[str, int],
+               sides: dict[str, tuple[float, float]], tiebreak: dict[str, float]) -> str:
+    """The room the greedy placement takes next."""
+    placed_count = {
+        r: sum(1 for n in neighbours[r] if n in geometry) for r in unplaced
+    }
+    frontier = [r for r in unplaced if placed_count[r] > 0]
+    if frontier:
+        # corridors first, then rooms closing cycles (several placed neighbours), leaves last
+        # (bigger rooms before smaller ones: small ones fit in the gaps that are left)
+        return max(frontier, key=lambda r: (corridor[r], min(placed_count[r], 2),
+                                            degree[r], sides[r][0] * sides[r][1],
+                                            tiebreak[r]))
+    # a new component (or the first room): its best-connected room, corridor first
+    return max(unplaced, key=lambda r: (corridor[r], degree[r], tiebreak[r]))
+
+
+def _halos(room_id: str, unplaced: list[str], geometry: dict[str, Rect],
+           sides: dict[str, tuple[float, float]], neighbours: dict[str, list[str]],
+           degree: dict[str, int]) -> tuple[float, np.ndarray]:
+    """Space kept free for the rooms still to hang off each placed room (and this one).
+
+    Returns (this room's halo depth, the placed rooms' halos as an (n, 4) array of rects).
+    """
+    area = {r: sides[r][0] * sides[r][1] / max(1, degree[r]) for r in unplaced}
+    own_depth = _halo_depth(sides[room_id], [area[n] for n in neighbours[room_id]
+                                             if n in area], sides, neighbours[room_id])
+    foreign = []
+    for other, rect in geometry.items():
+        # neighbours too: a corridor that touches another along its whole side takes
+        # the side the other's rooms need; touching at its end costs little of it
+        depth = _halo_depth(rect[2:], [area[n] for n in neighbours[other] if n in area],
+                            sides, neighbours[other])
+        if depth > 0:
+            foreign.append(_grow(np.array(rect), depth))
+    return own_depth, np.array(foreign).reshape(-1, 4)
+
+
+def _cycle_partners(room_id: str, geometry: dict[str, Rect], sides: dict[str, tuple[float, float]],
+                    neighbours: dict[str, list[str]]) -> dict[str, float]:
+    """Placed rooms that share an unplaced neighbour with this one -> that neighbour's short
+    side: the neighbour will have to touch both, so this room should land within its reach."""
+    partners = {}
+    for n in neighbours[room_id]:
+        if n in geometry:
+            continue
+        for p in neighbours[n]:
+            if p in geometry:
+                partners[p] = max(partners.get(p, 0.0), sides[n][1])
+    return partners
+
+
+def _centre_in_boundary(geometry: dict[str, Rect], placement: _Placement, width: float,
+                        height: float) -> None:
+    """Shift the placed building, as a whole and in place, to the centre of the boundary.
+
+    It grew from a drawn first room and may stick out on one side, or touch it, while
+    there is room on the other; centred, the repair has slack on every side to push
+    conflicts out into.
+    """
+    x0, y0, x1, y1 = placement.bbox()
+    dx = (width - x1 - x0) / 2
+    dy = (height - y1 - y0) / 2
+    if dx or dy:
+        shift = np.array([dx, dy, 0.0, 0.0])
+        placement.rects += shift
+        placement.blockers[len(placement.blockers) - len(placement.rects):] += shift
+        for room_id, (x, y, w, h) in geometry.items():
+            geometry[room_id] = (x + dx, y + dy, w, h)
 
 
 def cycle_blocks(spec: Spec) -> list[frozenset[str]]:

@@ -112,16 +112,8 @@ def compile_from_start(
     began = time.monotonic()
     deadline = began + options.time_limit
     timings: dict[str, float] = {}
-    if progress is None and not options.quiet:
-        progress = stderr_progress
-    if progress is not None:
-        report = progress
-        # every stage reports seconds since the compile began, not since its own start
-
-        def progress(_elapsed: float, incumbent: float | None, gap: float | None) -> None:
-            report(time.monotonic() - began, incumbent, gap)
+    progress = _progress_since(began, progress, options)
     formulation = options.formulation
-    method = "scip"
     rects_start: dict[str, Rect] | None = dict(start) if start is not None else None
     if options.strategy == "thesis":
         formulation = THESIS_AS_WRITTEN
@@ -130,58 +122,130 @@ def compile_from_start(
     model = build_model(spec, formulation=formulation)
     timings["build"] = time.monotonic() - t0
     if options.strategy != "thesis" and rects_start is None:
-        # SCIP's presolve alone proves typical conflicts infeasible in milliseconds (about a
-        # second at 100 rooms); without this probe the construction would spend its whole
-        # share of the time limit on a spec that has no layout
-        t0 = time.monotonic()
-        probe = solve(model, replace(options, time_limit=max(0.5, min(5.0, PROBE_SHARE * options.time_limit)),
-                                     node_limit=0, solution_limit=None, emphasis="default", quiet=True),
-                      feasibility_only=True)
-        timings["presolve"] = time.monotonic() - t0
+        probe = _presolve_probe(model, options, timings)
         if probe.status == "infeasible":
             return _no_layout(spec, options, probe, [], explain_infeasible, timings, began)
-        provider = start_provider or default_start_provider
-        share = replace(options, time_limit=max(0.1, START_SHARE * options.time_limit))
-        t0 = time.monotonic()
-        rects_start = provider(spec, share)
-        timings["start"] = time.monotonic() - t0
+        rects_start = _provided_start(spec, options, start_provider, timings)
         if rects_start is None and no_start_fallback is not None:
-            left = replace(options, time_limit=max(0.1, deadline - time.monotonic()))
-            result = no_start_fallback(spec, left, progress)
-            if result.layout is None:
-                # the decomposition ran on what the construction left; the limit was the user's
-                status = result.outcome.status if result.outcome is not None else "time_limit"
-                result = replace(result, diagnostics=explain.restate_limit(result.diagnostics, spec, options, status))
-            return result
-    if rects_start is not None:
-        # a start that fails verification is never handed on as an answer
-        start_layout = layout_from_rects(spec, rects_start)
-        if verify(spec, start_layout):
-            rects_start = None
-        else:
-            method = "construction"
+            return _run_fallback(spec, options, deadline, progress, no_start_fallback)
+    rects_start, method = _verified_start(spec, rects_start)
 
     polished: dict[str, Rect] | None = None
     if rects_start is not None:
-        warm_start_from_rects(model, spec, rects_start)
-        # the start's relations with their best sizes and places: a much better start for SCIP
-        t0 = time.monotonic()
-        share = max(0.2, min(POLISH_SHARE * options.time_limit, deadline - time.monotonic()))
-        first_polish = polish(model, replace(options, time_limit=share, quiet=True))
-        if first_polish.has_solution:
-            polished = rects_from_model(model)
-        else:
-            warm_start_from_rects(model, spec, rects_start)
-        timings["polish"] = time.monotonic() - t0
-        # neighbourhoods of LNS_SIZE rooms only pay off when they are a small part of the spec
-        if first_polish.has_solution and len(spec.rooms) > 2 * LNS_SIZE and options.search:
-            t0 = time.monotonic()
-            lns_share = LNS_SHARE[len(spec.rooms) <= LNS_SMALL]
-            lns_deadline = time.monotonic() + lns_share * max(0.0, deadline - time.monotonic())
-            improve_by_neighbourhoods(model, options, deadline=lns_deadline, size=LNS_SIZE, progress=progress)
-            polished = rects_from_model(model)
-            timings["neighbourhoods"] = time.monotonic() - t0
+        polished = _polish_start(model, spec, options, rects_start, deadline, progress, timings)
+    outcome = _search_whole_model(model, spec, options, rects_start, polished, deadline, progress,
+                                  timings)
+    candidates = _candidates(model, outcome, polished, rects_start)
 
+    t0 = time.monotonic()
+    first = _first_feasible_seconds(outcome, method, timings)
+    best, failures = _best_verified(spec, options, candidates, outcome, method, first, began)
+    timings["verify"] = time.monotonic() - t0
+    if best is not None:
+        timings["total"] = time.monotonic() - began
+        return CompileResult(best[1], [], best[2], timings, outcome)
+
+    return _no_layout(spec, options, outcome, failures, explain_infeasible, timings, began)
+
+
+def _progress_since(began: float, progress: ProgressCallback | None,
+                    options: SolveOptions) -> ProgressCallback | None:
+    """The progress callback (stderr unless quiet) fed the seconds since `began`."""
+    if progress is None and not options.quiet:
+        progress = stderr_progress
+    if progress is None:
+        return None
+    report = progress
+    # every stage reports seconds since the compile began, not since its own start
+
+    def since_began(_elapsed: float, incumbent: float | None, gap: float | None) -> None:
+        report(time.monotonic() - began, incumbent, gap)
+    return since_began
+
+
+def _presolve_probe(model, options: SolveOptions, timings: dict[str, float]) -> SolveOutcome:
+    """SCIP's presolve alone on the model: its status is 'infeasible' for typical conflicts.
+
+    It proves them in milliseconds (about a second at 100 rooms); without this probe the
+    construction would spend its whole share of the time limit on a spec that has no layout.
+    """
+    t0 = time.monotonic()
+    probe = solve(model, replace(options, time_limit=max(0.5, min(5.0, PROBE_SHARE * options.time_limit)),
+                                 node_limit=0, solution_limit=None, emphasis="default", quiet=True),
+                  feasibility_only=True)
+    timings["presolve"] = time.monotonic() - t0
+    return probe
+
+
+def _provided_start(spec: Spec, options: SolveOptions, start_provider: StartProvider | None,
+                    timings: dict[str, float]) -> dict[str, Rect] | None:
+    """The start provider's rectangles (default: the construction), in its share of the time."""
+    provider = start_provider or default_start_provider
+    share = replace(options, time_limit=max(0.1, START_SHARE * options.time_limit))
+    t0 = time.monotonic()
+    rects_start = provider(spec, share)
+    timings["start"] = time.monotonic() - t0
+    return rects_start
+
+
+def _run_fallback(spec: Spec, options: SolveOptions, deadline: float,
+                  progress: ProgressCallback | None, no_start_fallback: Fallback) -> CompileResult:
+    """The fallback strategy's result in the time left, its limit diagnostics restated."""
+    left = replace(options, time_limit=max(0.1, deadline - time.monotonic()))
+    result = no_start_fallback(spec, left, progress)
+    if result.layout is None:
+        # the decomposition ran on what the construction left; the limit was the user's
+        status = result.outcome.status if result.outcome is not None else "time_limit"
+        result = replace(result, diagnostics=explain.restate_limit(result.diagnostics, spec, options, status))
+    return result
+
+
+def _verified_start(spec: Spec, rects_start: dict[str, Rect] | None) -> tuple[dict[str, Rect] | None, str]:
+    """(the start if it passes verification else None, the method: 'construction' or 'scip')."""
+    if rects_start is None:
+        return None, "scip"
+    # a start that fails verification is never handed on as an answer
+    start_layout = layout_from_rects(spec, rects_start)
+    if verify(spec, start_layout):
+        return None, "scip"
+    return rects_start, "construction"
+
+
+def _polish_start(model, spec: Spec, options: SolveOptions, rects_start: dict[str, Rect],
+                  deadline: float, progress: ProgressCallback | None,
+                  timings: dict[str, float]) -> dict[str, Rect] | None:
+    """Warm-start the model from the start and polish it, then search its neighbourhoods.
+
+    Returns the polished rectangles (None when polishing found nothing); the model is left
+    holding them, or the start itself.
+    """
+    polished: dict[str, Rect] | None = None
+    warm_start_from_rects(model, spec, rects_start)
+    # the start's relations with their best sizes and places: a much better start for SCIP
+    t0 = time.monotonic()
+    share = max(0.2, min(POLISH_SHARE * options.time_limit, deadline - time.monotonic()))
+    first_polish = polish(model, replace(options, time_limit=share, quiet=True))
+    if first_polish.has_solution:
+        polished = rects_from_model(model)
+    else:
+        warm_start_from_rects(model, spec, rects_start)
+    timings["polish"] = time.monotonic() - t0
+    # neighbourhoods of LNS_SIZE rooms only pay off when they are a small part of the spec
+    if first_polish.has_solution and len(spec.rooms) > 2 * LNS_SIZE and options.search:
+        t0 = time.monotonic()
+        lns_share = LNS_SHARE[len(spec.rooms) <= LNS_SMALL]
+        lns_deadline = time.monotonic() + lns_share * max(0.0, deadline - time.monotonic())
+        improve_by_neighbourhoods(model, options, deadline=lns_deadline, size=LNS_SIZE, progress=progress)
+        polished = rects_from_model(model)
+        timings["neighbourhoods"] = time.monotonic() - t0
+    return polished
+
+
+def _search_whole_model(model, spec: Spec, options: SolveOptions, rects_start: dict[str, Rect] | None,
+                        polished: dict[str, Rect] | None, deadline: float,
+                        progress: ProgressCallback | None, timings: dict[str, float]) -> SolveOutcome:
+    """Branch-and-bound over the whole model (unless search is off and there is a start),
+    then, if SCIP beat the polished start, its incumbent polished in place."""
     # keep time for polishing SCIP's incumbent; translating the model costs about what
     # building it did
     reserve = min(POLISH_SHARE * options.time_limit, timings["build"] + 1.0)
@@ -204,7 +268,12 @@ def compile_from_start(
         if not polish(model, replace(options, time_limit=last, quiet=True)).has_solution:
             warm_start_from_rects(model, spec, incumbent)
         timings["polish"] = timings.get("polish", 0.0) + time.monotonic() - t0
+    return outcome
 
+
+def _candidates(model, outcome: SolveOutcome, polished: dict[str, Rect] | None,
+                rects_start: dict[str, Rect] | None) -> list[tuple[dict[str, Rect], str]]:
+    """(rectangles, status) that may be the answer, in order of preference on a tie."""
     # SCIP's (polished) incumbent, the polished start and the start itself: the best one
     # that passes verification is the answer
     candidates: list[tuple[dict[str, Rect], str]] = []
@@ -214,14 +283,25 @@ def compile_from_start(
         candidates.append((polished, "construction"))
     if rects_start is not None:
         candidates.append((rects_start, "construction"))
+    return candidates
 
-    t0 = time.monotonic()
-    failures = []
+
+def _first_feasible_seconds(outcome: SolveOutcome, method: str, timings: dict[str, float]) -> float | None:
+    """Seconds to the first feasible layout: the construction's, or SCIP's plus the build."""
     first = outcome.first_solution_seconds
     if method == "construction":
         first = timings.get("start", 0.0)
     elif first is not None:
         first += timings["build"]
+    return first
+
+
+def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dict[str, Rect], str]],
+                   outcome: SolveOutcome, method: str, first: float | None,
+                   began: float) -> tuple[tuple[float, Layout, str] | None, list]:
+    """(objective, layout, status) of the best candidate that passes verification, or None;
+    and the violations of the candidates that failed."""
+    failures = []
     best: tuple[float, Layout, str] | None = None
     for rects, status in candidates:
         # (5.1) with o chosen per room as the thesis' model may choose it: the best
@@ -249,12 +329,7 @@ def compile_from_start(
             failures.append(violations)
         else:
             best = (objective, layout, status)
-    timings["verify"] = time.monotonic() - t0
-    if best is not None:
-        timings["total"] = time.monotonic() - began
-        return CompileResult(best[1], [], best[2], timings, outcome)
-
-    return _no_layout(spec, options, outcome, failures, explain_infeasible, timings, began)
+    return best, failures
 
 
 def _no_layout(spec: Spec, options: SolveOptions, outcome: SolveOutcome, failures: list, explain_infeasible: bool,

@@ -26,6 +26,7 @@ walls and the room corners its laser sees but its centre never enters).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -271,45 +272,18 @@ def explore(
         goal, dist = found
         run.goals += 1
         polyline = string_pull(navigable, backtrack(dist, navigable, goal), passes=2)
-        aborted = False
-        since_scan = 0.0
-        for a, b in zip(polyline, polyline[1:]):
-            seg = math.hypot(b[0] - a[0], b[1] - a[1]) * resolution
-            if seg == 0:
-                continue
-            heading = run.turn_to(heading, math.atan2(-(b[0] - a[0]), b[1] - a[1]))
-            done = 0.0
-            while done < seg:
-                step = min(seg - done, settings.scan_every_m - since_scan)
-                done += step
-                since_scan += step
-                run.distance += step
-                f = done / seg
-                pos = (a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f)
-                if since_scan >= settings.scan_every_m - 1e-9:
-                    since_scan = 0.0
-                    sense(pos, heading)
-                    if not run.goal_alive(goal):
-                        aborted = True
-                        break
-            run.trajectory.append(pos)
-            if aborted:
-                break
+        pos, heading, aborted = _drive(run, polyline, goal, pos, heading, sense)
         cell = (int(math.floor(pos[0] + 0.5)), int(math.floor(pos[1] + 0.5)))
         if not navigable[cell]:  # rounding off a segment end: fall back to the goal's path
             cell = goal if not aborted else _nearest_true(navigable, pos)
         if aborted:
             continue
-        # at the goal: face the unknown cells it was chosen for, then look
-        facing = _towards_unknown(run.known, goal, run.reach_cells + 2)
-        if facing is not None:
-            heading = run.turn_to(heading, facing)
-        sense(pos, heading)
-        if run.goal_alive(goal):
-            k = int(math.ceil(run.reach_cells))
-            r0, c0 = max(0, goal[0] - k), max(0, goal[1] - k)
-            run.blacklist[r0 : goal[0] + k + 1, c0 : goal[1] + k + 1] = True
-            run.blacklisted += 1
+        heading = _look_at_goal(run, goal, pos, heading, sense)
+    return _result(run, target_region, target_cells, hit_limit)
+
+
+def _result(run: _Run, target_region: np.ndarray, target_cells: int, hit_limit: bool) -> ExplorationResult:
+    """What the run cost, and how much of the reachable free space it saw."""
     coverage = int(((run.known == FREE) & target_region).sum()) / max(1, target_cells)
     return ExplorationResult(
         reached_target=run.target_distance is not None,
@@ -320,10 +294,61 @@ def explore(
         final_coverage=coverage,
         goals=run.goals,
         blacklisted=run.blacklisted,
-        reachable_free_m2=target_cells * resolution * resolution,
+        reachable_free_m2=target_cells * run.resolution * run.resolution,
         hit_goal_limit=hit_limit,
         trajectory=tuple(run.trajectory),
     )
+
+
+def _drive(run: _Run, polyline, goal: tuple[int, int], pos: tuple[float, float], heading: float,
+           sense: Callable[[tuple[float, float], float], None]) -> tuple[tuple[float, float], float, bool]:
+    """Drive along the polyline, scanning every `scan_every_m` metres.
+
+    Returns (position, heading, aborted): aborted when a scan on the way saw the goal's
+    frontier, so the robot stops there and replans.
+    """
+    settings = run.settings
+    aborted = False
+    since_scan = 0.0
+    for a, b in zip(polyline, polyline[1:]):
+        seg = math.hypot(b[0] - a[0], b[1] - a[1]) * run.resolution
+        if seg == 0:
+            continue
+        heading = run.turn_to(heading, math.atan2(-(b[0] - a[0]), b[1] - a[1]))
+        done = 0.0
+        while done < seg:
+            step = min(seg - done, settings.scan_every_m - since_scan)
+            done += step
+            since_scan += step
+            run.distance += step
+            f = done / seg
+            pos = (a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f)
+            if since_scan >= settings.scan_every_m - 1e-9:
+                since_scan = 0.0
+                sense(pos, heading)
+                if not run.goal_alive(goal):
+                    aborted = True
+                    break
+        run.trajectory.append(pos)
+        if aborted:
+            break
+    return pos, heading, aborted
+
+
+def _look_at_goal(run: _Run, goal: tuple[int, int], pos: tuple[float, float], heading: float,
+                  sense: Callable[[tuple[float, float], float], None]) -> float:
+    """At the goal: face the unknown cells it was chosen for and scan; blacklist the goal if
+    its frontier survives that. Returns the new heading."""
+    facing = _towards_unknown(run.known, goal, run.reach_cells + 2)
+    if facing is not None:
+        heading = run.turn_to(heading, facing)
+    sense(pos, heading)
+    if run.goal_alive(goal):
+        k = int(math.ceil(run.reach_cells))
+        r0, c0 = max(0, goal[0] - k), max(0, goal[1] - k)
+        run.blacklist[r0 : goal[0] + k + 1, c0 : goal[1] + k + 1] = True
+        run.blacklisted += 1
+    return heading
 
 
 def _nearest_true(mask: np.ndarray, pos: tuple[float, float]) -> tuple[int, int]:

@@ -155,7 +155,52 @@ def convert(
     filename: str = "<building>",
 ) -> tuple[Spec, list[Diagnostic]]:
     """Turn a Building into a Spec per the thesis, §5.3; warnings say where the plan was adjusted."""
+    refused = _refuse_unusable(building, name, filename)
+    if refused is not None:
+        return refused
     diagnostics: list[Diagnostic] = []
+    settings = Settings()
+    door = _round(building.real_distance_m)
+    ids = room_ids(building)
+
+    adjacencies, door_rooms = _adjacencies(building, ids, door, filename, diagnostics)
+    # Eq. 5.9: a room holding a door needs a side of door/utilization plus two walls.
+    door_side = door / settings.door_utilization + 2 * settings.walldim
+    frame = _plan_frame(building)
+
+    rooms: list[Room] = []
+    hints: list[Hint] = []
+    for space in building.spaces:
+        room_id = ids[space.id]
+        ratio = space.rectangularization_ratio
+        rtype = space.spec_type
+        var_plus = options.var_corridor if rtype == "C" else options.var_plus
+        var_minus = options.var_corridor if rtype == "C" else options.var_minus
+        sides = _unrounded_sides(space, ratio, var_plus, var_minus, options, frame.mpu)
+        label = spec_label(space.label) or _DEFAULT_LABELS[rtype]
+        _lift_to_mindim(sides, ratio, var_plus, options, room_id, label, space, filename, diagnostics)
+        widened = False
+        if room_id in door_rooms and max(sides.max_w, sides.max_h) < door_side:
+            widened = True
+            _widen_for_door(sides, door_side, door, room_id, label, space, filename, diagnostics)
+        rooms.append(_rounded_room(room_id, rtype, label, sides, var_plus, var_minus, options,
+                                   door_side if widened else None))
+        if options.hints:
+            hints.append(_hint(space, room_id, frame))
+
+    spec = Spec(
+        name=name or spec_name(building),
+        rooms=tuple(rooms),
+        boundary=frame.boundary,
+        adjacencies=tuple(adjacencies),
+        hints=tuple(hints),
+    )
+    return spec, diagnostics
+
+
+def _refuse_unusable(building: Building, name: str | None,
+                     filename: str) -> tuple[Spec, list[Diagnostic]] | None:
+    """An empty Spec and the errors for a plan without spaces or with an arealess one."""
     if not building.spaces:
         # read_building never returns such a Building (E410); one built in code might.
         empty = Diagnostic(codes.NO_SPACES, "the plan has no spaces", filename, Span.point(1, 1))
@@ -172,102 +217,95 @@ def convert(
             )
             for space in degenerate
         ]
-    settings = Settings()
+    return None
+
+
+@dataclass(frozen=True, slots=True)
+class _PlanFrame:
+    """The plan's bounding box (file units) and the spec's boundary around it (metres)."""
+
+    min_x: float
+    max_y: float
+    mpu: float
+    """Metres per file unit."""
+    boundary: Boundary
+
+
+def _plan_frame(building: Building) -> _PlanFrame:
     mpu = building.metres_per_unit
-    door = _round(building.real_distance_m)
-    ids = room_ids(building)
-
-    adjacencies, door_rooms = _adjacencies(building, ids, door, filename, diagnostics)
-    # Eq. 5.9: a room holding a door needs a side of door/utilization plus two walls.
-    door_side = door / settings.door_utilization + 2 * settings.walldim
-
     plan_min_x = min(space.bbox.min_x for space in building.spaces)
     plan_max_x = max(space.bbox.max_x for space in building.spaces)
     plan_min_y = min(space.bbox.min_y for space in building.spaces)
     plan_max_y = max(space.bbox.max_y for space in building.spaces)
     boundary = Boundary(_ceil((plan_max_x - plan_min_x) * mpu), _ceil((plan_max_y - plan_min_y) * mpu))
+    return _PlanFrame(plan_min_x, plan_max_y, mpu, boundary)
 
-    rooms: list[Room] = []
-    hints: list[Hint] = []
-    for space in building.spaces:
-        room_id = ids[space.id]
-        bbox_w = space.bbox.width * mpu
-        bbox_h = space.bbox.height * mpu
-        ratio = space.rectangularization_ratio
-        rtype = space.spec_type
-        var_plus = options.var_corridor if rtype == "C" else options.var_plus
-        var_minus = options.var_corridor if rtype == "C" else options.var_minus
 
-        sides = _Sides(
-            min_w=max(options.mindim, bbox_w * (ratio - var_minus)),
-            max_w=bbox_w * (ratio + var_plus),
-            target_w=bbox_w * ratio,
-            min_h=max(options.mindim, bbox_h * (ratio - var_minus)),
-            max_h=bbox_h * (ratio + var_plus),
-            target_h=bbox_h * ratio,
-        )
-        label = spec_label(space.label) or _DEFAULT_LABELS[rtype]
-        _lift_to_mindim(sides, ratio, var_plus, options, room_id, label, space, filename, diagnostics)
-        widened = False
-        if room_id in door_rooms and max(sides.max_w, sides.max_h) < door_side:
-            widened = True
-            _widen_for_door(sides, door_side, door, room_id, label, space, filename, diagnostics)
-
-        # Rounding never takes a minimum below mindim (a mindim with more than three
-        # decimals is kept as given) nor a target outside its rounded bounds.
-        min_w = max(_floor(sides.min_w), options.mindim)
-        min_h = max(_floor(sides.min_h), options.mindim)
-        max_w, max_h = _ceil(sides.max_w), _ceil(sides.max_h)
-        target_w = min(max(_round(sides.target_w), min_w), max_w)
-        target_h = min(max(_round(sides.target_h), min_h), max_h)
-        # ar* from the rounded targets, so the written target is itself a feasible room.
-        ar_target = max(target_w, target_h) / min(target_w, target_h)
-        var_avg = (var_plus + var_minus) / 2
-        margin = options.alpha * var_avg + options.beta * var_avg * (ar_target - 1) ** 2
-        min_ar = max(1.0, _floor(ar_target - margin))
-        max_ar = _ceil(ar_target + margin)
-        if widened:
-            # The door side may need to be long while the other stays short: allow that shape.
-            short_max = max_h if max_w >= max_h else max_w
-            max_ar = max(max_ar, _ceil(door_side / short_max))
-
-        rooms.append(
-            Room(
-                id=room_id,
-                min_w=min_w,
-                max_w=max_w,
-                target_w=target_w,
-                min_h=min_h,
-                max_h=max_h,
-                target_h=target_h,
-                min_ar=min_ar,
-                max_ar=max_ar,
-                rtype=rtype,
-                label=label,
-            )
-        )
-        if options.hints:
-            # The original place, in the boundary's frame: origin bottom-left, y up.
-            x = _floor((space.bbox.min_x - plan_min_x) * mpu)
-            y = _floor((plan_max_y - space.bbox.max_y) * mpu)
-            hints.append(
-                Hint(
-                    room=room_id,
-                    x=x,
-                    y=y,
-                    w=_fit(x, _floor(bbox_w), boundary.w),
-                    h=_fit(y, _floor(bbox_h), boundary.h),
-                )
-            )
-
-    spec = Spec(
-        name=name or spec_name(building),
-        rooms=tuple(rooms),
-        boundary=boundary,
-        adjacencies=tuple(adjacencies),
-        hints=tuple(hints),
+def _unrounded_sides(space: Space, ratio: float, var_plus: float, var_minus: float,
+                     options: ImportOptions, mpu: float) -> _Sides:
+    """The space's target sides (§5.3.1) and their variance bounds (§5.3.2), in metres."""
+    bbox_w = space.bbox.width * mpu
+    bbox_h = space.bbox.height * mpu
+    return _Sides(
+        min_w=max(options.mindim, bbox_w * (ratio - var_minus)),
+        max_w=bbox_w * (ratio + var_plus),
+        target_w=bbox_w * ratio,
+        min_h=max(options.mindim, bbox_h * (ratio - var_minus)),
+        max_h=bbox_h * (ratio + var_plus),
+        target_h=bbox_h * ratio,
     )
-    return spec, diagnostics
+
+
+def _rounded_room(room_id: str, rtype: str, label: str, sides: _Sides, var_plus: float,
+                  var_minus: float, options: ImportOptions, door_side: float | None) -> Room:
+    """The spec's room: sides rounded outwards, aspect-ratio bounds from the rounded targets.
+
+    `door_side`: the side the room was widened to for its door (None: it was not).
+    """
+    # Rounding never takes a minimum below mindim (a mindim with more than three
+    # decimals is kept as given) nor a target outside its rounded bounds.
+    min_w = max(_floor(sides.min_w), options.mindim)
+    min_h = max(_floor(sides.min_h), options.mindim)
+    max_w, max_h = _ceil(sides.max_w), _ceil(sides.max_h)
+    target_w = min(max(_round(sides.target_w), min_w), max_w)
+    target_h = min(max(_round(sides.target_h), min_h), max_h)
+    # ar* from the rounded targets, so the written target is itself a feasible room.
+    ar_target = max(target_w, target_h) / min(target_w, target_h)
+    var_avg = (var_plus + var_minus) / 2
+    margin = options.alpha * var_avg + options.beta * var_avg * (ar_target - 1) ** 2
+    min_ar = max(1.0, _floor(ar_target - margin))
+    max_ar = _ceil(ar_target + margin)
+    if door_side is not None:
+        # The door side may need to be long while the other stays short: allow that shape.
+        short_max = max_h if max_w >= max_h else max_w
+        max_ar = max(max_ar, _ceil(door_side / short_max))
+    return Room(
+        id=room_id,
+        min_w=min_w,
+        max_w=max_w,
+        target_w=target_w,
+        min_h=min_h,
+        max_h=max_h,
+        target_h=target_h,
+        min_ar=min_ar,
+        max_ar=max_ar,
+        rtype=rtype,
+        label=label,
+    )
+
+
+def _hint(space: Space, room_id: str, frame: _PlanFrame) -> Hint:
+    """The space's original place, in the boundary's frame: origin bottom-left, y up."""
+    mpu = frame.mpu
+    x = _floor((space.bbox.min_x - frame.min_x) * mpu)
+    y = _floor((frame.max_y - space.bbox.max_y) * mpu)
+    return Hint(
+        room=room_id,
+        x=x,
+        y=y,
+        w=_fit(x, _floor(space.bbox.width * mpu), frame.boundary.w),
+        h=_fit(y, _floor(space.bbox.height * mpu), frame.boundary.h),
+    )
 
 
 def _lift_to_mindim(sides, ratio, var_plus, options, room_id, label, space, filename, diagnostics):
