@@ -83,7 +83,7 @@ def _read_plans(paths: list[str]):
 
 def run(args: argparse.Namespace) -> int:
     """Evaluate the plans and write the report; exit 1 when a plan cannot be read."""
-    from layoutdsl.evaluate.report import evaluate, write_report
+    from layoutdsl.evaluate.report import evaluate, map_check_warnings, write_report
 
     files = [args.original, *args.generated]
     buildings, diagnostics = _read_plans(files)
@@ -115,8 +115,6 @@ def run(args: argparse.Namespace) -> int:
     except (ValueError, MemoryError) as error:
         print(f"layoutdsl evaluate: cannot evaluate: {error}", file=sys.stderr)
         return exitcodes.USAGE
-    from layoutdsl.evaluate.report import map_check_warnings
-
     for line in map_check_warnings(report):
         print(f"warning: {line}", file=sys.stderr)
     try:

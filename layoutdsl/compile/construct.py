@@ -35,7 +35,7 @@ import time
 from dataclasses import dataclass
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
-from layoutdsl.compile.generate import RoomSizes, generate_geometry
+from layoutdsl.compile.generate import RoomSizes, cycle_blocks, generate_geometry
 from layoutdsl.syntax.ast import Room, Spec
 
 
@@ -869,8 +869,6 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
     each fast, and the generator places it as a rigid whole (the thesis' cycle decomposition,
     §5.5.3, applied to generation). A spec that is one block itself gets no templates.
     """
-    from layoutdsl.compile.generate import cycle_blocks
-
     blocks = [b for b in cycle_blocks(spec) if len(b) < len(spec.rooms)]
     if not blocks:
         return []

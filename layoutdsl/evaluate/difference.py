@@ -20,6 +20,8 @@ from itertools import combinations
 
 import numpy as np
 
+from layoutdsl.evaluate.topology import room_ids
+
 Centres = Mapping[str, tuple[float, float]]
 """Room id -> (x, y) of the room's centre."""
 
@@ -99,8 +101,6 @@ def building_centres(building) -> dict[str, tuple[float, float]]:
     The centre of a space is the centre of its bounding box: the rectangle the importer makes
     of it (and writes as its hint), so a plan redrawn from its hints scores about 0.
     """
-    from layoutdsl.evaluate.topology import room_ids
-
     ids = room_ids(building)
     return {
         ids[space.id]: ((space.bbox.min_x + space.bbox.max_x) / 2, (space.bbox.min_y + space.bbox.max_y) / 2)

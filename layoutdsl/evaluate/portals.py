@@ -93,7 +93,7 @@ def realise_portal_graph(
 ) -> tuple[np.ndarray, MapCheck]:
     """The map with missed portals opened, and what was found; `occupied` is not modified."""
     wanted = {tuple(sorted(pair)) for pair in portal_pairs}
-    met = meetings(~occupied, labels, ids)
+    met_as_rasterized = met = meetings(~occupied, labels, ids)
     missing = sorted(wanted - met)
     repaired = occupied.copy()
     opened: list[tuple[str, str]] = []
@@ -140,13 +140,14 @@ def realise_portal_graph(
                 repaired, met = sealed, after
                 closed.append((a, b))
                 break
-    final = meetings(~repaired, labels, ids)
+    # `met` follows every accepted change, so it is the repaired map's meetings
+    final = met
     check = MapCheck(
         missing_before=tuple(missing),
         opened=tuple(opened),
         still_missing=tuple(sorted(wanted - final)),
         extra=tuple(sorted(final - wanted)),
-        extra_before=tuple(sorted(meetings(~occupied, labels, ids) - wanted)),
+        extra_before=tuple(sorted(met_as_rasterized - wanted)),
         closed=tuple(closed),
     )
     return repaired, check
