@@ -166,8 +166,11 @@ def _aspect_ratio_possible(room: Room) -> bool:
 
 
 def check_room_sizes(spec: Spec) -> Iterator[Diagnostic]:
-    """E216, E201-E205: each room's sizes and aspect ratios are consistent."""
-    for room in spec.rooms:
+    """E216, E201-E205: each room's sizes and aspect ratios are consistent, and each arm's
+    (an L-room's second rectangle is checked as a room of its own)."""
+    known = rooms_by_id(spec)
+    arms = [arm.as_room(known[arm.room]) for arm in spec.arms if arm.room in known]
+    for room in (*spec.rooms, *arms):
         broken = False
         for field, value, name in (("min_w", room.min_w, "minw"), ("min_h", room.min_h, "minh")):
             if value <= 0:
