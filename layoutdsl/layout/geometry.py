@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
-from layoutdsl.syntax.ast import Spec
+from layoutdsl.syntax.ast import Spec, arm_id
 
 Rect = tuple[float, float, float, float]
 """(x, y, w, h): bottom-left corner and size, metres, boundary frame."""
@@ -23,12 +23,18 @@ OPPOSITE_SIDE = {"left": "right", "right": "left", "below": "above", "above": "b
 
 
 def layout_from_rects(spec: Spec, rects: Mapping[str, Rect], info: SolveInfo | None = None) -> Layout:
-    """A Layout from plain rectangles: rounded rooms, portals centred on their shared walls."""
+    """A Layout from plain rectangles: rounded rooms, portals centred on their shared walls.
+
+    An L-shaped room's second rectangle is `rects[arm_id(room.id)]`."""
     assert spec.boundary is not None
     placed = {}
+    armed = {arm.room for arm in spec.arms}
     for room in spec.rooms:
         x, y, w, h = (round_layout_number(float(v)) for v in rects[room.id])
-        placed[room.id] = PlacedRoom(room.id, room.label, room.rtype, x, y, w, h)
+        arm = None
+        if room.id in armed:
+            arm = tuple(round_layout_number(float(v)) for v in rects[arm_id(room.id)])
+        placed[room.id] = PlacedRoom(room.id, room.label, room.rtype, x, y, w, h, arm)
     portals = []
     for adj in spec.adjacencies:
         try:
