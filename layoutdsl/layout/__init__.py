@@ -201,6 +201,10 @@ class Layout:
     obstacles: tuple[PlacedObstacle, ...] = ()
     solve: SolveInfo | None = field(default=None)
 
+    def parts(self) -> tuple[PlacedRoom, ...]:
+        """Every room's rectangles (an L-room gives two, under its one id)."""
+        return tuple(part for room in self.rooms for part in room.parts)
+
     def room(self, room_id: str) -> PlacedRoom:
         for room in self.rooms:
             if room.id == room_id:
