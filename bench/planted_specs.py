@@ -19,6 +19,7 @@ from pathlib import Path
 
 from layoutdsl.syntax.ast import (
     Adjacency,
+    Arm,
     Boundary,
     Cluster,
     ClusterMember,
@@ -253,11 +254,60 @@ def campus_constraints() -> tuple[Spec, Layout, str]:
     return spec, _layout(spec.name, 24.0, 17.0, spec, CAMPUS_PLACED, CAMPUS_OBSTACLES), header
 
 
+# ===== 5. An L-shaped corridor wrapping two offices (issue 14) =====
+
+L_ROOMS = """\
+C0 11 14 12 1.5 2.2 1.8 1 20 C CORRIDOR
+R0 3.5 5 4.5 3.5 5 4.5 1 1.4 R OFFICE
+R1 3.5 5 4.5 3.5 5 4.5 1 1.4 R OFFICE
+E0 2 3 2.5 2 3 2.5 1 1.5 E ENTRANCE"""
+L_ARM = Arm("C0", 1.5, 2.2, 1.8, 6, 9, 8, 1, 20)
+L_PLACED = [
+    # the corridor's long arm up the right, its second arm along the top to the left
+    ("C0", "C", "CORRIDOR", 10.0, 0.0, 1.8, 12.0),
+    # one office under the top arm, one beside the long arm: the L wraps both
+    ("R0", "R", "OFFICE", 3.5, 5.5, 4.5, 4.5),
+    ("R1", "R", "OFFICE", 5.3, 0.8, 4.5, 4.5),
+    ("E0", "E", "ENTRANCE", 12.0, 4.0, 2.0, 2.5),
+]
+L_ARM_PLACED = (3.5, 10.2, 6.5, 1.8)
+L_ADJ = "R0-C0 R1-C0 E0-C0:i R0-R1"
+
+
+def l_corridor() -> tuple[Spec, Layout, str]:
+    """An L-shaped corridor around two offices. Returns (spec, planted layout, header comment)."""
+    rooms = []
+    for line in L_ROOMS.splitlines():
+        parts = line.split()
+        rooms.append(Room(parts[0], *map(float, parts[1:9]), parts[9], " ".join(parts[10:])))
+    rooms[0] = replace(rooms[0], rho_cover=0.5, rho_error=0.5)
+    rooms[3] = replace(rooms[3], on_boundary=True)
+    spec = Spec(
+        "l_corridor", tuple(rooms), Boundary(14.0, 12.0), _adj(L_ADJ), arms=(L_ARM,),
+        # a seed whose generated arrangement wraps the offices too (seed 1 puts the arm
+        # alongside the long one: a valid L, but a wide corridor)
+        settings=Settings(seed=4, explicit=frozenset({"seed"})),
+    )  # fmt: skip
+    layout = _layout(spec.name, 14.0, 12.0, spec, L_PLACED)
+    corridor = replace(layout.room("C0"), arm=L_ARM_PLACED)
+    placed = tuple(corridor if room.id == "C0" else room for room in layout.rooms)
+    portals = tuple(make_portal(*(next(r for r in placed if r.id == i) for i in (a.a, a.b)), a.kind, a.door)
+                    for a in spec.adjacencies)
+    header = (
+        "# An L-shaped corridor wrapping two rooms (issue 14). C0 is an L: its line in `rooms` is\n"
+        "# the long arm, its line in `arms` the second arm, joined flush at a corner with no wall\n"
+        "# between them. The two offices sit in the L's inner corner, each with a door on a\n"
+        "# different arm, and the entrance opens onto the corridor from the boundary.\n"
+    )
+    return spec, replace(layout, rooms=placed, portals=portals), header
+
+
 BUILDERS = {
     "school_fig42": school_fig42,
     "office_small": office_small,
     "school_cycle": school_cycle,
     "campus_constraints": campus_constraints,
+    "l_corridor": l_corridor,
 }
 
 
