@@ -195,8 +195,10 @@ def convert(
         if fit is None:
             sides = _unrounded_sides(space, ratio, var_plus, var_minus, options, frame.mpu)
         else:
-            # each arm is rectangularized on its own box (§5.3.1) with the same variances
-            arm_ratio = math.sqrt(fit.second_fill)
+            # each arm is rectangularized on its own box (§5.3.1) with the same variances;
+            # the arms share the polygon's area in proportion to how much of it each covers,
+            # so the room keeps its area as a rectangularized one does
+            ratio, arm_ratio = _arm_ratios(space, fit)
             arm_sides = _box_sides(_width(fit.second) * frame.mpu, _height(fit.second) * frame.mpu,
                                    arm_ratio, var_plus, var_minus, options)
             _lift_to_mindim(arm_sides, arm_ratio, var_plus, options, room_id, label, space, filename,
@@ -204,7 +206,6 @@ def convert(
             arm = _rounded_room(room_id, rtype, label, arm_sides, var_plus, var_minus, options, None)
             arms.append(Arm(room_id, arm.min_w, arm.max_w, arm.target_w, arm.min_h, arm.max_h,
                             arm.target_h, arm.min_ar, arm.max_ar))
-            ratio = math.sqrt(fit.first_fill)
             sides = _box_sides(_width(fit.first) * frame.mpu, _height(fit.first) * frame.mpu, ratio,
                                var_plus, var_minus, options)
         _lift_to_mindim(sides, ratio, var_plus, options, room_id, label, space, filename, diagnostics)
@@ -241,6 +242,15 @@ def _l_fit(space: Space, options: ImportOptions, metres_per_unit: float) -> LFit
     if min(_width(fit.second), _height(fit.second)) * mpu < options.mindim:
         return None
     return fit
+
+
+def _arm_ratios(space: Space, fit: LFit) -> tuple[float, float]:
+    """sqrt(target area / box area) of each arm, the targets adding up to the polygon's area."""
+    covered = [fill * _width(box) * _height(box) for fill, box in ((fit.first_fill, fit.first),
+                                                                  (fit.second_fill, fit.second))]
+    scale = space.area / max(sum(covered), 1e-12)
+    return tuple(math.sqrt(c * scale / (_width(box) * _height(box)))
+                 for c, box in zip(covered, (fit.first, fit.second)))
 
 
 def _width(box) -> float:
