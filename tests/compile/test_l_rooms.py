@@ -141,3 +141,11 @@ def test_the_xml_space_has_six_corners(out: Path) -> None:
                if not (ring[i - 1][0] == pt[0] == ring[(i + 1) % len(ring)][0]
                        or ring[i - 1][1] == pt[1] == ring[(i + 1) % len(ring)][1])]
     assert len(corners) == 6
+
+
+def test_the_same_seed_gives_the_same_l_layout(out: Path, tmp_path: Path) -> None:
+    assert main(["compile", str(SPEC), "-o", str(tmp_path), "-q", "--time-limit", "30"]) == 0
+    first = Layout.from_json((out / "l_corridor.layout.json").read_text())
+    again = Layout.from_json((tmp_path / "l_corridor.layout.json").read_text())
+    assert (first.rooms, first.portals) == (again.rooms, again.portals)
+    assert (out / "l_corridor.xml").read_bytes() == (tmp_path / "l_corridor.xml").read_bytes()
