@@ -217,9 +217,6 @@ _STATUS_TEXT = {
 
 
 def _status_text(spec, info) -> str:
-    if spec.arms and info.status == "construction":
-        # the thesis' model places rectangles only: SCIP never sees an L-room
-        return "constructed layout (L-shaped rooms: not polished by SCIP)"
     return _STATUS_TEXT.get(info.status, info.status)
 
 

@@ -119,7 +119,7 @@ def compile_from_start(
         formulation = THESIS_AS_WRITTEN
         rects_start = None
     if spec.arms:
-        return _compile_by_construction(spec, options, rects_start, start_provider, timings, began)
+        return _compile_l_rooms(spec, options, rects_start, start_provider, progress, timings, began, deadline)
     t0 = time.monotonic()
     model = build_model(spec, formulation=formulation)
     timings["build"] = time.monotonic() - t0
@@ -150,43 +150,40 @@ def compile_from_start(
     return _no_layout(spec, options, outcome, failures, explain_infeasible, timings, began)
 
 
-def _compile_by_construction(spec: Spec, options: SolveOptions, rects_start: dict[str, Rect] | None,
-                             start_provider: StartProvider | None, timings: dict[str, float],
-                             began: float) -> CompileResult:
-    """A spec with L-shaped rooms: the construction's layout is the answer.
+def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, Rect] | None,
+                     start_provider: StartProvider | None, progress: ProgressCallback | None,
+                     timings: dict[str, float], began: float, deadline: float) -> CompileResult:
+    """The strategy 'auto' for a spec with L-shaped rooms: the same stages on its boxes.
 
-    The thesis' model (model/) places one rectangle per room, so SCIP cannot polish an L;
-    the construction's last step (construct._final_layout) already brings every box to its
-    target sizes with the relations fixed, which is what polishing does first. The start
-    gets the whole time limit.
+    The thesis' model places one rectangle per room, so it is built on the spec's boxes
+    (compile.lshape.boxes_spec: each L-room's arm a room of its own, each adjacency of an L
+    on the box the start realises it with) with each L's two boxes joined as the start
+    joins them (model.equations.join_l_arms). SCIP then polishes, searches neighbourhoods
+    and branches as for any spec; every candidate is verified against the spec itself.
+    Without a start there is nothing to build the boxes from: no layout (E902).
     """
     if rects_start is None:
-        provider = start_provider or default_start_provider
-        t0 = time.monotonic()
-        rects_start = provider(spec, options)
-        timings["start"] = time.monotonic() - t0
+        rects_start = _provided_start(spec, options, start_provider, timings)
+    rects_start, method = _verified_start(spec, rects_start)
+    if rects_start is None:
+        timings["total"] = time.monotonic() - began
+        return CompileResult(None, [explain.no_layout_in_time(spec, options)], "no_layout", timings)
+    boxes, joined = lshape.boxes_spec(spec, rects_start)
+    joins = {pair: lshape.join_option(rects_start[pair[0]], rects_start[pair[1]]) for pair in joined}
     t0 = time.monotonic()
-    layout = None
-    violations: list = []
-    if rects_start is not None:
-        boxes, _ = lshape.boxes_spec(spec, rects_start)
-        info = SolveInfo(
-            status="construction",
-            objective=round_layout_number(objective_of_rects(boxes, rects_start)),
-            seconds=round(time.monotonic() - began, 3),
-            first_feasible_seconds=round(timings.get("start", 0.0), 3),
-            seed=options.seed,
-            method="construction",
-        )
-        layout = layout_from_rects(spec, rects_start, info)
-        violations = verify(spec, layout)
+    model = build_model(boxes, formulation=options.formulation, joins=joins)
+    timings["build"] = time.monotonic() - t0
+    polished = _polish_start(model, boxes, options, rects_start, deadline, progress, timings)
+    outcome = _search_whole_model(model, boxes, options, rects_start, polished, deadline, progress, timings)
+    candidates = _candidates(model, outcome, polished, rects_start)
+    t0 = time.monotonic()
+    first = _first_feasible_seconds(outcome, method, timings)
+    best, failures = _best_verified(spec, options, candidates, outcome, method, first, began, model_spec=boxes)
     timings["verify"] = time.monotonic() - t0
     timings["total"] = time.monotonic() - began
-    if layout is not None and not violations:
-        return CompileResult(layout, [], "construction", timings)
-    if violations:
-        return CompileResult(None, [explain.verification_failed(spec, violations)], "verify_failed", timings)
-    return CompileResult(None, [explain.no_layout_in_time(spec, options)], "no_layout", timings)
+    if best is not None:
+        return CompileResult(best[1], [], best[2], timings, outcome)
+    return _no_layout(spec, options, outcome, failures, False, timings, began)
 
 
 def _progress_since(began: float, progress: ProgressCallback | None,
@@ -339,15 +336,16 @@ def _first_feasible_seconds(outcome: SolveOutcome, method: str, timings: dict[st
 
 def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dict[str, Rect], str]],
                    outcome: SolveOutcome, method: str, first: float | None,
-                   began: float) -> tuple[tuple[float, Layout, str] | None, list]:
+                   began: float, model_spec: Spec | None = None) -> tuple[tuple[float, Layout, str] | None, list]:
     """(objective, layout, status) of the best candidate that passes verification, or None;
-    and the violations of the candidates that failed."""
+    and the violations of the candidates that failed. The objective is the model's, of
+    `model_spec` when the model was built on another spec (an L-spec's boxes)."""
     failures = []
     best: tuple[float, Layout, str] | None = None
     for rects, status in candidates:
         # (5.1) with o chosen per room as the thesis' model may choose it: the best
         # orientation that satisfies (5.4)-(5.6)
-        objective = objective_of_rects(spec, rects)
+        objective = objective_of_rects(model_spec or spec, rects)
         # a tie (the solver's incumbent is the polished start, up to its tolerances) keeps
         # the earlier candidate, so the layout reports the rule that stopped the solve
         if best is not None and objective >= best[0] - 1e-6 * max(1.0, abs(best[0])):
