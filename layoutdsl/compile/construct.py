@@ -105,9 +105,13 @@ class _Problem:
     """The pairs of boxes that form one L-shaped room (lshape.py): joined, not apart."""
     checked: Spec | None = None
     """The spec a result is checked against, when `spec` is its boxes (lshape.boxes_spec)."""
+    crossing: dict[Pair, bool] | None = None
+    """Joined pairs whose arm runs across (True) or along (False) the box (lshape.crossings):
+    the two turn together."""
 
     @staticmethod
-    def of(spec: Spec, joins: frozenset[Pair] = frozenset(), checked: Spec | None = None) -> _Problem:
+    def of(spec: Spec, joins: frozenset[Pair] = frozenset(), checked: Spec | None = None,
+           crossing: dict[Pair, bool] | None = None) -> _Problem:
         """Precompute the pairs and constants of the spec."""
         boundary = spec.boundary
         assert boundary is not None
@@ -136,6 +140,7 @@ class _Problem:
             big_m=max(boundary.w, boundary.h) + settings.walldim + longest_wall + 1.0,
             joins=joins,
             checked=checked,
+            crossing=crossing,
         )
 
     def rect(self, geometry: dict[str, Rect], thing: str) -> Rect:
@@ -347,6 +352,11 @@ def _add_rooms(model, problem: _Problem, orientations: dict[str, bool], turnable
                 rooms.deviation.append(room.rho_error * dev)
     for ob_id, (ox, oy, ow, oh) in problem.obstacles.items():
         rooms.boxes[ob_id] = _Box(ox, oy, ow, oh)
+    for (box, arm), crosses in (problem.crossing or {}).items():
+        # an L turns as a whole: its arm keeps running across (or along) its box
+        o_box, o_arm = rooms.orientation_vars.get(box), rooms.orientation_vars.get(arm)
+        if o_box is not None and o_arm is not None:
+            model.addCons(o_arm == (1 - o_box if crosses else o_box))
     return rooms
 
 
@@ -717,6 +727,8 @@ def _repair(
             # no progress: the blamed rooms may need to turn, and the conflict's cause may
             # lie further out, so look a step further each time
             turnable |= blamed & set(orientations)
+            # the two boxes of an L turn together
+            turnable |= {other for pair in (problem.crossing or {}) if turnable & set(pair) for other in pair}
         for _ in range(stalls):
             blamed |= {n for thing in blamed for n in neighbours.get(thing, ())}
         orientations = dict(outcome.orientations)
@@ -840,7 +852,8 @@ def construct_start(
             # each seed geometry says which box of an L-room meets which neighbour
             geometry = lshape.seed_arms(spec, geometry, rng)
             boxes, joins = lshape.boxes_spec(spec, geometry)
-            candidate_problem = _Problem.of(boxes, joins=joins, checked=spec)
+            candidate_problem = _Problem.of(boxes, joins=joins, checked=spec,
+                                            crossing=lshape.crossings(spec))
         # a hint geometry is the likeliest and is worth a long repair; graph geometries are
         # many short tries (measured: a fresh draw beats a long repair of a stuck one)
         if index == len(candidates) - 1:

@@ -32,6 +32,27 @@ LONG_SIDE_JOIN_COST = 0.5
 """Score (m² of overlap) a seed arm pays for meeting the room's box with its long side."""
 
 
+def crossings(spec: Spec) -> dict[tuple[str, str], bool]:
+    """(room box, arm box) -> does the arm run across the box (Arm.crosses), for the L-rooms
+    whose lines say so."""
+    rooms = {room.id: room for room in spec.rooms}
+    found = {}
+    for arm in spec.arms:
+        if arm.room in rooms and (crosses := arm.crosses(rooms[arm.room])) is not None:
+            found[(arm.room, arm_id(arm.room))] = crosses
+    return found
+
+
+def arm_sizes(arm, room, room_box: Rect) -> list[tuple[float, float]]:
+    """The arm's target (w, h) in the orientations its L allows beside `room_box`."""
+    long_side, short_side = max(arm.target_w, arm.target_h), min(arm.target_w, arm.target_h)
+    crosses = arm.crosses(room)
+    if crosses is None or long_side == short_side:
+        return [(long_side, short_side), (short_side, long_side)]
+    box_long_x = room_box[2] >= room_box[3]
+    return [(long_side, short_side) if box_long_x != crosses else (short_side, long_side)]
+
+
 def rooms_only(spec: Spec, rects: dict[str, Rect]) -> dict[str, Rect]:
     """The rectangles of the rooms themselves, without the L-rooms' arms."""
     arms = {arm_id(arm.room) for arm in spec.arms}
@@ -136,11 +157,10 @@ def seed_arms(spec: Spec, geometry: dict[str, Rect], rng: random.Random) -> dict
         if key in seeded or arm.room not in seeded:
             continue
         room_box = seeded[arm.room]
-        long_side, short_side = max(arm.target_w, arm.target_h), min(arm.target_w, arm.target_h)
         others = [box for other, box in seeded.items() if other != arm.room]
         best = None
         for option in JOIN_OPTIONS:
-            for size in ((long_side, short_side), (short_side, long_side)):
+            for size in arm_sizes(arm, rooms[arm.room], room_box):
                 box = joined_box(room_box, size, option)
                 out = _overlap(box, outside) - _overlap(box, inside)
                 score = sum(_overlap(box, other) for other in others) + 2.0 * out
@@ -151,6 +171,6 @@ def seed_arms(spec: Spec, geometry: dict[str, Rect], rng: random.Random) -> dict
                 candidate = (round(score, 9), rng.random(), box)
                 if best is None or candidate[:2] < best[:2]:
                     best = candidate
-        assert best is not None and arm.room in rooms
+        assert best is not None
         seeded[key] = best[2]
     return seeded

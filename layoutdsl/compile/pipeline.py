@@ -171,7 +171,7 @@ def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, R
     boxes, joined = lshape.boxes_spec(spec, rects_start)
     joins = {pair: lshape.join_option(rects_start[pair[0]], rects_start[pair[1]]) for pair in joined}
     t0 = time.monotonic()
-    model = build_model(boxes, formulation=options.formulation, joins=joins)
+    model = build_model(boxes, formulation=options.formulation, joins=joins, crossing=lshape.crossings(spec))
     timings["build"] = time.monotonic() - t0
     polished = _polish_start(model, boxes, options, rects_start, deadline, progress, timings)
     outcome = _search_whole_model(model, boxes, options, rects_start, polished, deadline, progress, timings)

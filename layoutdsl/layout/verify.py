@@ -158,6 +158,7 @@ def _check_rooms(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
             yield from _check_size(room.id, part, bound, tol)
         if len(parts) == 2:
             yield from _check_join(room, *parts, tol)
+            yield from _check_turn(room, arm, *parts, tol)
         if room.on_boundary and not any(
             part.x <= tol or part.y <= tol or part.x2 >= width - tol or part.y2 >= height - tol
             for part in parts
@@ -224,6 +225,28 @@ def _check_join(room, a: PlacedRoom, b: PlacedRoom, tol: float):
             f"the arms of room `{room.id}` ({_rect(a)}; {_rect(b)}) do not form an L: they must "
             "touch along a full edge, flush at a corner",
             room.span,
+        )
+
+
+def _check_turn(room, arm, a: PlacedRoom, b: PlacedRoom, tol: float):
+    """The L keeps the shape its lines give: when both lines' bounds decide which side is
+    long, the arm runs across the first rectangle if one line is wide and the other tall,
+    along it otherwise."""
+    room_wide, arm_wide = room.target_w - room.target_h, arm.target_w - arm.target_h
+    if room_wide == 0 or arm_wide == 0:
+        return
+    # the longest short side is shorter than the shortest long side
+    decided = all(min(r.max_w, r.max_h) < max(r.min_w, r.min_h) for r in (room, arm))
+    if not decided:
+        return  # a rectangle whose bounds allow a square may lie either way
+    crosses = (room_wide > 0) != (arm_wide > 0)
+    if ((a.w > a.h) != (b.w > b.h)) != crosses:
+        yield Violation(
+            "join",
+            (room.id,),
+            f"the arm of room `{room.id}` runs {'along' if crosses else 'across'} its first rectangle; "
+            f"its lines say {'across' if crosses else 'along'}",
+            arm.span or room.span,
         )
 
 

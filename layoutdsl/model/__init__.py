@@ -79,6 +79,7 @@ def build_model(
     fixed_relations: Mapping[tuple[str, str], str] | None = None,
     formulation: Formulation = Formulation(),
     joins: Mapping[tuple[str, str], str] | None = None,
+    crossing: Mapping[tuple[str, str], bool] | None = None,
 ) -> pyo.ConcreteModel:
     """The MIQP of the thesis, §5.5.1, for a checked spec (no solving).
 
@@ -97,7 +98,7 @@ def build_model(
         unit(m, data)
     fix_relations(m, fixed_relations or {})
     if joins:
-        join_l_arms(m, joins)
+        join_l_arms(m, joins, crossing)
     return m
 
 

@@ -67,7 +67,9 @@ class Arm:
     The room's line in `rooms` gives its first rectangle; this one is joined to it flush
     along one full edge, at a corner of the shared side, so the union is an L with no wall
     inside (the thesis' first item of future work, §7: rooms made of several rectangles).
-    The bounds read like the room line's columns and apply to this rectangle alone.
+    The bounds read like the room line's columns and apply to this rectangle alone; as
+    written, wide or tall, the two lines also say whether the arm runs across the first
+    rectangle or along it (`crosses`).
     """
 
     room: str
@@ -81,6 +83,15 @@ class Arm:
     max_ar: float
     span: Span | None = field(default=None, compare=False)
     spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+    def crosses(self, room: Room) -> bool | None:
+        """Does the L's arm run across its room's first rectangle (True: one line is wide,
+        the other tall) or along it (False)? None when a line's targets are square, and so
+        say nothing. The L keeps this shape however it is turned."""
+        room_wide, arm_wide = room.target_w - room.target_h, self.target_w - self.target_h
+        if room_wide == 0 or arm_wide == 0:
+            return None
+        return (room_wide > 0) != (arm_wide > 0)
 
     def as_room(self, room: Room) -> Room:
         """This rectangle as a Room of its own (id `arm_id(room.id)`), with the room's type,

@@ -48,7 +48,7 @@ def test_a_door_on_the_arm_meets_the_adjacency() -> None:
     """R0 touches only the arm of C0: the adjacency R0-C0 holds through the arm alone."""
     spec, layout = _planted()
     corridor, office = layout.room("C0"), layout.room("R0")
-    assert office.x2 < corridor.x  # R0 is nowhere near C0's own rectangle
+    assert office.y > corridor.y2 + 1  # R0 is nowhere near C0's own rectangle
     assert verify(spec, layout) == []
 
 
@@ -58,9 +58,9 @@ def test_an_l_room_without_its_arm_is_a_shape_violation() -> None:
 
 
 @pytest.mark.parametrize("arm, why", [
-    ((3.5, 9.0, 6.5, 1.8), "T: flush but not at a corner of the shared side"),
-    ((3.5, 10.0, 6.5, 1.8), "overlapping the long arm"),
-    ((3.3, 10.2, 6.5, 1.8), "a gap between the arms"),
+    ((5.0, 1.8, 1.8, 8.0), "T: flush but not at a corner of the shared side"),
+    ((0.0, 1.5, 1.8, 8.0), "overlapping the long arm"),
+    ((0.0, 2.0, 1.8, 8.0), "a gap between the arms"),
 ])  # fmt: skip
 def test_arms_that_do_not_form_an_l_are_a_join_violation(arm, why) -> None:
     spec, layout = _planted()
@@ -68,14 +68,22 @@ def test_arms_that_do_not_form_an_l_are_a_join_violation(arm, why) -> None:
 
 
 def test_the_arm_keeps_its_own_size_bounds() -> None:
-    """The arm line allows 6-9 m; a 10 m arm breaks it although the room line would allow it."""
+    """The arm line allows 6-9 m; a 9.5 m arm breaks it although the room line would allow it."""
     spec, layout = _planted()
-    assert "size" in _rules(spec, _with_room(layout, "C0", arm=(0.0, 10.2, 10.0, 1.8)))
+    assert "size" in _rules(spec, _with_room(layout, "C0", arm=(0.0, 1.8, 1.8, 9.5)))
+
+
+def test_the_arm_keeps_running_across_as_its_lines_say() -> None:
+    """The room line is wide and the arm line tall: an arm lying along the box is a
+    different shape (a wide corridor), not the L the spec describes."""
+    spec, layout = _planted()
+    violations = verify(spec, _with_room(layout, "C0", arm=(0.0, 1.8, 8.0, 1.8)))
+    assert any(v.rule == "join" and "runs along" in v.message for v in violations)
 
 
 def test_a_room_overlapping_the_arm_is_an_overlap() -> None:
     spec, layout = _planted()
-    moved = _with_room(layout, "R0", y=6.0)  # R0's top now runs 0.3 m into the arm
+    moved = _with_room(layout, "R0", x=1.5)  # R0's left side now runs 0.3 m into the arm
     assert "overlap" in _rules(spec, moved)
 
 

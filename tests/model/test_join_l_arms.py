@@ -29,8 +29,8 @@ def test_polishing_the_planted_l_keeps_it_an_l_and_verified() -> None:
     spec, rects = _planted_rects()
     boxes, joined = lshape.boxes_spec(spec, rects)
     joins = {pair: lshape.join_option(rects[pair[0]], rects[pair[1]]) for pair in joined}
-    assert joins == {("C0", "C0/arm"): "right:hi"}  # the box right of the arm, tops flush
-    model = build_model(boxes, joins=joins)
+    assert joins == {("C0", "C0/arm"): "below:lo"}  # the box below the arm, left edges flush
+    model = build_model(boxes, joins=joins, crossing=lshape.crossings(spec))
     warm_start_from_rects(model, boxes, rects)
     outcome = polish(model, SolveOptions(time_limit=20, quiet=True))
     assert outcome.has_solution
@@ -38,8 +38,9 @@ def test_polishing_the_planted_l_keeps_it_an_l_and_verified() -> None:
     layout = layout_from_rects(spec, polished)
     assert verify(spec, layout) == []
     box, arm = polished["C0"], polished["C0/arm"]
-    assert box[1] + box[3] == pytest.approx(arm[1] + arm[3], abs=1e-6)  # still flush at the top
-    assert arm[0] + arm[2] == pytest.approx(box[0], abs=1e-6)  # and side by side, no wall
+    assert box[0] == pytest.approx(arm[0], abs=1e-6)  # still flush on the left
+    assert box[1] + box[3] == pytest.approx(arm[1], abs=1e-6)  # and stacked, no wall between
+    assert box[2] > box[3] and arm[3] > arm[2]  # the arm still runs across the box
 
 
 def test_without_the_join_the_planted_l_has_no_polish() -> None:
