@@ -108,6 +108,8 @@ class _Problem:
     crossing: dict[Pair, bool] | None = None
     """Joined pairs whose arm runs across (True) or along (False) the box (lshape.crossings):
     the two turn together."""
+    exact_walls: frozenset[frozenset[str]] = frozenset()
+    """Pairs kept exactly a wall apart, without SAFETY (lshape.beside_pairs)."""
 
     @staticmethod
     def of(spec: Spec, joins: frozenset[Pair] = frozenset(), checked: Spec | None = None,
@@ -141,6 +143,7 @@ class _Problem:
             joins=joins,
             checked=checked,
             crossing=crossing,
+            exact_walls=lshape.beside_pairs(spec, joins) if joins else frozenset(),
         )
 
     def rect(self, geometry: dict[str, Rect], thing: str) -> Rect:
@@ -456,7 +459,8 @@ def _add_pair_relations(model, problem: _Problem, boxes: dict[str, _Box],
             if joined:
                 _add_join(model, boxes[a], boxes[b], direction, slack)
             elif wall is None:
-                _add_direction(model, boxes[a], boxes[b], direction, gap, slack)
+                exact = frozenset(pair) in problem.exact_walls
+                _add_direction(model, boxes[a], boxes[b], direction, problem.walldim if exact else gap, slack)
             else:
                 _add_adjacent(model, boxes[a], boxes[b], direction, problem.walldim, wall, slack)
     return pairs

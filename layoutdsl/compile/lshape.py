@@ -78,6 +78,26 @@ def boxes_spec(spec: Spec, geometry: dict[str, Rect]) -> tuple[Spec, frozenset[t
     return replace(spec, rooms=tuple(rooms), adjacencies=adjacencies, arms=()), joins
 
 
+def beside_pairs(boxes: Spec, joins) -> frozenset[frozenset[str]]:
+    """Pairs of boxes of two adjacent rooms, one of them an L, other than the pair that
+    realises the adjacency: that pair lies exactly a wall apart, and an L's other box may lie
+    on the same line (its outer faces are flush), so it must be kept a wall away exactly,
+    not a hair more."""
+    partner = {}
+    for box, arm in joins:
+        partner[box], partner[arm] = arm, box
+    def group(box: str) -> tuple[str, ...]:
+        return (box, partner[box]) if box in partner else (box,)
+
+    found = set()
+    for adj in boxes.adjacencies:
+        for first in group(adj.a):
+            for second in group(adj.b):
+                if (first, second) != (adj.a, adj.b) and first != second:
+                    found.add(frozenset((first, second)))
+    return frozenset(found)
+
+
 def _boxes_of(room_id: str, armed) -> tuple[str, ...]:
     return (room_id, arm_id(room_id)) if room_id in armed else (room_id,)
 

@@ -52,3 +52,14 @@ def test_seed_arms_joins_the_arm_where_it_overlaps_nothing() -> None:
     assert 0 <= x and x + w <= 20 and 0 <= y and y + h <= 20
     assert sorted((w, h)) == [2, 6] and max(w, h) == (h if option.split(":")[0] in ("below", "above") else w), \
         "the arm meets the corridor with its short side"
+
+
+def test_an_ls_other_box_is_kept_exactly_a_wall_from_its_neighbour() -> None:
+    """R0 meets C0 on the arm; the corridor's own box may lie on the same line (the L's
+    outer face is flush), so R0 and that box get no extra safety margin."""
+    from layoutdsl.compile.lshape import beside_pairs
+
+    spec = _spec()
+    geometry = {"C0": (0.0, 0.0, 10.0, 2.0), arm_id("C0"): (0.0, 2.0, 2.0, 6.0), "R0": (2.2, 4.5, 4.0, 4.0)}
+    boxes, joins = boxes_spec(spec, geometry)
+    assert beside_pairs(boxes, joins) == {frozenset(("R0", "C0"))}
