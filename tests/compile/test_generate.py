@@ -142,3 +142,48 @@ def test_a_solved_cycle_block_is_placed_as_a_rigid_whole():
     assert verify(ring, placed) == []
     # and the construction from it is a verified layout of the whole spec
     assert generated_layout(spec, 3) is not None
+
+
+def test_a_tree_hanging_off_a_missing_door_moves_as_a_whole():
+    from layoutdsl.compile.generate import _contact_shortfall, _move_subtrees, _neighbours, _placement_of, _Placement
+
+    spec = tree_spec()
+    walldim = spec.settings.walldim
+    # C0 at the bottom with its six rooms; C1 (and R6, R7 hanging off it) drawn far away
+    # in the top corner: the door C0-C1, a bridge of the graph, is missing
+    geometry = {"C0": (1.0, 1.0, 14.0, 2.0)}
+    for i in range(6):
+        geometry[f"R{i}"] = (1.0 + i * (2.0 + walldim), 3.0 + walldim, 2.0, 3.5)
+    geometry["C1"] = (20.0, 8.0, 2.0, 8.0)
+    geometry["R6"] = (22.0 + walldim, 8.0, 1.5, 3.5)
+    geometry["R7"] = (22.0 + walldim, 12.0, 1.5, 3.5)
+    walls = {frozenset((a.a, a.b)): a.door / spec.settings.door_utilization for a in spec.adjacencies}
+    placement = _placement_of(geometry, _Placement(spec.boundary.w, spec.boundary.h, walldim))
+    before = {r: geometry[r] for r in ("C1", "R6", "R7")}
+
+    def shortfall(a, b):
+        import numpy as np
+        return _contact_shortfall(np.array([geometry[a]]), np.array(geometry[b]), walldim,
+                                  walls[frozenset((a, b))])[0]
+
+    assert shortfall("C0", "C1") > 1.0
+    _move_subtrees(geometry, placement, _neighbours(spec), walls, pinned=set())
+    assert shortfall("C0", "C1") < 1e-6
+    # the tree kept its own doors and its shape (moved, perhaps mirrored; never resized)
+    assert shortfall("C1", "R6") < 1e-6 and shortfall("C1", "R7") < 1e-6
+    assert {r: geometry[r][2:] for r in before} == {r: rect[2:] for r, rect in before.items()}
+    assert geometry["C1"] != before["C1"]
+    # the rest of the building stayed where it was
+    assert geometry["C0"] == (1.0, 1.0, 14.0, 2.0)
+
+
+def test_each_generated_try_gets_its_own_solved_blocks():
+    from layoutdsl.compile.construct import _TemplateSets
+
+    sets = _TemplateSets(cycle_spec(), seed=0, deadline=time.monotonic() + 30)
+    first, second = sets.get(0), sets.get(1)
+    assert first and second
+    assert set(first[0]) == set(second[0]) == set("ABCDE")
+    # solved from other seeds: the same rooms, another solution of the block
+    assert first[0] != second[0]
+    assert sets.get(1) is second  # solved once, kept
