@@ -187,3 +187,19 @@ def test_each_generated_try_gets_its_own_solved_blocks():
     # solved from other seeds: the same rooms, another solution of the block
     assert first[0] != second[0]
     assert sets.get(1) is second  # solved once, kept
+
+
+def test_corridors_sharing_a_door_meet_end_on_not_side_by_side():
+    import numpy as np
+
+    from layoutdsl.compile.generate import _side_by_side
+
+    walldim = 0.2
+    corridor = np.array([0.0, 0.0, 20.0, 2.0])  # 20 m along x
+    cands = np.array([
+        [0.0, 2.2, 20.0, 2.0],   # parallel, sharing its whole 20 m side: 18 m beyond its end
+        [9.0, 2.2, 2.0, 12.0],   # a T: its 2 m end against the corridor's side
+        [20.2, 0.0, 15.0, 2.0],  # end to end
+        [10.0, 2.2, 15.0, 2.0],  # parallel, sharing 10 m: 8 m beyond its end
+    ])
+    assert _side_by_side(cands, corridor, walldim).tolist() == pytest.approx([36.0, 0.0, 0.0, 16.0])
