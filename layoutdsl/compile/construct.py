@@ -36,6 +36,7 @@ from dataclasses import dataclass
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
 from layoutdsl.compile.generate import RoomSizes, cycle_blocks, generate_geometry
+from layoutdsl.compile.ladders import ladder_template
 from layoutdsl.syntax.ast import Room, Spec
 
 
@@ -871,7 +872,11 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
     """
     blocks = [b for b in cycle_blocks(spec) if len(b) < len(spec.rooms)]
     if not blocks:
-        return []
+        # a block itself: its ladder of corridors, if it has one, drawn outright
+        ladder = ladder_template(spec, random.Random(seed))
+        if ladder is None or hard_violations(spec.restricted_to(frozenset(ladder), spec.name), ladder):
+            return []
+        return [ladder]
     budget_end = time.monotonic() + BLOCK_SHARE * max(0.0, deadline - time.monotonic())
     total = sum(len(b) for b in blocks)
     templates = []

@@ -203,3 +203,29 @@ def test_corridors_sharing_a_door_meet_end_on_not_side_by_side():
         [10.0, 2.2, 15.0, 2.0],  # parallel, sharing 10 m: 8 m beyond its end
     ])
     assert _side_by_side(cands, corridor, walldim).tolist() == pytest.approx([36.0, 0.0, 0.0, 16.0])
+
+
+def test_a_ladder_of_corridors_is_drawn_with_every_rung_spanning_the_rails():
+    from _specs import ladder_spec
+
+    from layoutdsl.compile.construct import block_spec, hard_violations
+    from layoutdsl.compile.generate import cycle_blocks
+    from layoutdsl.compile.ladders import find_ladder, ladder_template
+
+    spec = ladder_spec()
+    (block,) = cycle_blocks(spec)
+    ring = block_spec(spec, block)
+    assert find_ladder(ring) == ("A", "B", ["K0", "K1", "K2"])
+    turned = set()
+    for seed in range(6):
+        rects = ladder_template(ring, random.Random(seed))
+        assert rects is not None and set(rects) == set("AB") | {"K0", "K1", "K2"}
+        # every door among the ladder's rooms, sizes within bounds, no overlaps
+        assert hard_violations(ring.restricted_to(frozenset(rects), "ladder"), rects) == []
+        # the rungs share one length: the gap between the rails
+        spans = {round(max(rects[k][2:]), 9) for k in ("K0", "K1", "K2")}
+        assert len(spans) == 1
+        turned.add(rects["A"][2] < rects["A"][3])
+    assert turned == {False, True}  # rails along x for some seeds, along y for others
+    # and the whole spec, offices included, compiles from it
+    assert generated_layout(spec, 0) is not None
