@@ -32,7 +32,7 @@ import os
 import random
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
 from layoutdsl.compile.generate import RoomSizes, cycle_blocks, generate_geometry
@@ -880,6 +880,7 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
     budget_end = time.monotonic() + BLOCK_SHARE * max(0.0, deadline - time.monotonic())
     total = sum(len(b) for b in blocks)
     templates = []
+    solved: dict[str, Rect] = {}
     for block in blocks:
         left = budget_end - time.monotonic()
         # a block's first repair rounds take about a second: less than BLOCK_MIN_SECONDS
@@ -889,12 +890,30 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
         total -= len(block)
         if deadline - time.monotonic() < 2 * share:
             break
-        rects = construct_start(block_spec(spec, block), seed=seed, use_hints=False,
-                                deadline=time.monotonic() + share)
+        # a room two blocks share keeps the shape the first block gave it, so the second
+        # can be laid over it (measured on school_hendersonhighschool: a hall solved in
+        # two shapes left the gym of the second block 7.7 m from it)
+        shared = {room_id: solved[room_id][2:] for room_id in block if room_id in solved}
+        rects = construct_start(_with_shapes(block_spec(spec, block), shared), seed=seed,
+                                use_hints=False, deadline=time.monotonic() + share)
         _debug(f"block of {len(block)} rooms: {'solved' if rects else 'not solved'}")
         if rects is not None:
             templates.append(rects)
+            solved.update(rects)
     return templates
+
+
+def _with_shapes(spec: Spec, shapes: dict[str, tuple[float, float]]) -> Spec:
+    """The spec with these rooms' sides fixed to (w, h), either way round."""
+    if not shapes:
+        return spec
+    rooms = []
+    for room in spec.rooms:
+        if room.id in shapes:
+            w, h = shapes[room.id]
+            room = replace(room, min_w=w, max_w=w, target_w=w, min_h=h, max_h=h, target_h=h)
+        rooms.append(room)
+    return replace(spec, rooms=tuple(rooms))
 
 
 class _TemplateSets:

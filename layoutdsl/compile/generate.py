@@ -342,13 +342,19 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
         put(room_id, (x, y, w, h))
 
     unplaced = [room.id for room in spec.rooms if room.id not in geometry]
+    dropped: set[int] = set()
     while unplaced:
         room_id = _next_room(unplaced, geometry, neighbours, corridor, degree, sides, tiebreak)
-        pending = [t for t in templates if room_id in t and not all(r in geometry for r in t)]
+        pending = [t for t in templates if room_id in t and not all(r in geometry for r in t)
+                   and id(t) not in dropped]
         if pending:
             # a cycle block: all its rooms at once, as they were solved together
-            for other, rect in _place_template(pending[0], room_id, placement, geometry, neighbours,
-                                                walls, rng).items():
+            placed = _place_template(pending[0], room_id, placement, geometry, neighbours, walls, rng)
+            if placed is None:
+                # it shares a placed room solved in another shape: its rooms go one by one
+                dropped.add(id(pending[0]))
+                continue
+            for other, rect in placed.items():
                 put(other, rect)
                 if other in unplaced:
                     unplaced.remove(other)
@@ -364,7 +370,7 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
     shift_fixed = set(fixed)
     # the rooms of a placed block keep the places they were solved in: moving one alone
     # would only break the contacts that close its cycles
-    fixed |= {room_id for t in templates for room_id in t if room_id in geometry}
+    fixed |= {room_id for t in templates if id(t) not in dropped for room_id in t if room_id in geometry}
     if not shift_fixed and len(placement.rects):
         _centre_in_boundary(geometry, placement, width, height)
     for _ in range(REPLACE_PASSES):
@@ -458,46 +464,64 @@ def cycle_blocks(spec: Spec) -> list[frozenset[str]]:
     return sorted(blocks, key=lambda b: (-len(b), sorted(b)))
 
 
-def _mirrored(template: Mapping[str, Rect], flip_x: bool, flip_y: bool) -> dict[str, Rect]:
-    """The template mirrored about its frame's axes: the same contacts, another building."""
+def _mirrored(template: Mapping[str, Rect], flip_x: bool, flip_y: bool,
+              turn: bool = False) -> dict[str, Rect]:
+    """The template mirrored about its frame's axes (and, with `turn`, about its diagonal:
+    x and y swapped): the same contacts, another building."""
+    if turn:
+        template = {room_id: (y, x, h, w) for room_id, (x, y, w, h) in template.items()}
     return {
         room_id: (-x - w if flip_x else x, -y - h if flip_y else y, w, h)
         for room_id, (x, y, w, h) in template.items()
     }
 
 
+SHAPE_TOLERANCE = 1e-3
+"""Metres two solutions of a room shared by two blocks may differ by and still be one
+(the solver leaves its sizes a few micrometres off the bounds they were pinned to)."""
+
+SYMMETRIES = [(flip_x, flip_y, turn) for turn in (False, True) for flip_x in (False, True)
+              for flip_y in (False, True)]
+"""The 8 images of a template: 4 mirror images, each also turned a quarter."""
+
+
 def _place_template(template: Mapping[str, Rect], room_id: str, placement: _Placement,
                     geometry: dict[str, Rect], neighbours: dict[str, list[str]],
-                    walls: dict[frozenset[str], float], rng: random.Random) -> dict[str, Rect]:
-    """Where a solved cycle block goes, as a rigid whole: its rooms not yet placed.
+                    walls: dict[frozenset[str], float], rng: random.Random) -> dict[str, Rect] | None:
+    """Where a solved cycle block goes, as a rigid whole: its rooms not yet placed (None
+    when it shares a placed room that has another shape there).
 
     A block with a room already placed (a room two blocks share) is laid over that room, in
-    each of its four mirror images; otherwise `room_id` is put against the sides of its placed
-    neighbours as a single room would be, and the rest of the block follows it. Candidates
-    are scored like single rooms: overlap, area outside the boundary, missing contacts with
-    placed rooms outside the block, growth of the building.
+    each of its 8 images (mirrored, turned) in which that room has the shape it was placed
+    with; otherwise `room_id` is put against the sides of its placed neighbours as a single
+    room would be, and the rest of the block follows it. Candidates are scored like single
+    rooms: overlap, area outside the boundary, missing contacts with placed rooms outside
+    the block, growth of the building.
     """
     width, height, walldim = placement.width, placement.height, placement.walldim
     todo = [r for r in template if r not in geometry]
     anchors = [r for r in template if r in geometry]
     offsets, shapes = [], []
-    for flip_x in (False, True):
-        for flip_y in (False, True):
-            shape = _mirrored(template, flip_x, flip_y)
-            if anchors:
-                # centre on the shared room as it was placed
-                ax, ay, aw, ah = geometry[anchors[0]]
-                sx, sy, sw, sh = shape[anchors[0]]
-                moves = np.array([[ax + aw / 2 - sx - sw / 2, ay + ah / 2 - sy - sh / 2]])
-            else:
-                x, y, w, h = shape[room_id]
-                placed = [n for n in neighbours[room_id] if n in geometry]
-                blocks = [_side_candidates(np.array(geometry[n]), w, h, walldim, walls[frozenset((room_id, n))],
-                                           placement.blockers, rng) for n in placed]
-                cands = np.vstack(blocks) if blocks else _free_candidates(placement, w, h, rng)
-                moves = cands[:, :2] - np.array([x, y])
-            offsets.append(moves)
-            shapes.append(np.array([shape[r] for r in todo], dtype=float))
+    for flip_x, flip_y, turn in SYMMETRIES:
+        shape = _mirrored(template, flip_x, flip_y, turn)
+        if anchors:
+            # laid over the shared room as it was placed, where it has that shape
+            ax, ay, aw, ah = geometry[anchors[0]]
+            sx, sy, sw, sh = shape[anchors[0]]
+            if abs(aw - sw) > SHAPE_TOLERANCE or abs(ah - sh) > SHAPE_TOLERANCE:
+                continue
+            moves = np.array([[ax - sx, ay - sy]])
+        else:
+            x, y, w, h = shape[room_id]
+            placed = [n for n in neighbours[room_id] if n in geometry]
+            blocks = [_side_candidates(np.array(geometry[n]), w, h, walldim, walls[frozenset((room_id, n))],
+                                       placement.blockers, rng) for n in placed]
+            cands = np.vstack(blocks) if blocks else _free_candidates(placement, w, h, rng)
+            moves = cands[:, :2] - np.array([x, y])
+        offsets.append(moves)
+        shapes.append(np.array([shape[r] for r in todo], dtype=float))
+    if not offsets:
+        return None
     # every (mirror image, offset) as len(todo) rectangles
     cand_shapes = np.concatenate([np.repeat(shape[None], len(moves), axis=0) for shape, moves in zip(shapes, offsets)])
     moves = np.concatenate(offsets)
@@ -589,6 +613,8 @@ def _move_subtrees(geometry: dict[str, Rect], placement: _Placement,
         others = _placement_of(rest, placement)
         template = {room_id: geometry[room_id] for room_id in geometry if room_id in side_v}
         moved = _place_template(template, v, others, rest, neighbours, walls, _NO_DRAW)
+        if moved is None:
+            continue
         before = sum(_room_defects(geometry, placement, neighbours, walls).values())
         trial = {room_id: moved.get(room_id, rect) for room_id, rect in geometry.items()}
         trial_placement = _placement_of(trial, placement)

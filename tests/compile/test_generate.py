@@ -229,3 +229,35 @@ def test_a_ladder_of_corridors_is_drawn_with_every_rung_spanning_the_rails():
     assert turned == {False, True}  # rails along x for some seeds, along y for others
     # and the whole spec, offices included, compiles from it
     assert generated_layout(spec, 0) is not None
+
+
+def test_blocks_sharing_a_room_give_it_one_shape_and_are_laid_over_it():
+    from _specs import adjacent, room
+
+    from layoutdsl.compile.construct import block_templates, hard_violations
+    from layoutdsl.compile.generate import _neighbours, _place_template, _Placement
+    from layoutdsl.syntax.ast import Spec
+
+    # two triangles of rooms sharing the hall S (the bow tie): two blocks, one room in both
+    rooms = (room("S", 8.0, 5.0), room("A", 4.0, 3.0), room("B", 4.0, 3.0),
+             room("C", 4.0, 3.0), room("D", 4.0, 3.0))
+    adjacencies = tuple(adjacent(a, b) for a, b in
+                        [("S", "A"), ("A", "B"), ("B", "S"), ("S", "C"), ("C", "D"), ("D", "S")])
+    spec = Spec("bowtie", rooms, Boundary(30.0, 30.0), adjacencies)
+    first, second = block_templates(spec, seed=1, deadline=time.monotonic() + 30)
+    assert sorted(first["S"][2:]) == pytest.approx(sorted(second["S"][2:]))
+    # laid over S as placed: S keeps its place, the other block's doors to it hold
+    walls = {frozenset((a.a, a.b)): a.door / spec.settings.door_utilization for a in adjacencies}
+    placement = _Placement(30.0, 30.0, spec.settings.walldim)
+    geometry = {}
+    for room_id, (x, y, w, h) in first.items():  # in the middle of the boundary
+        geometry[room_id] = (x + 10.0, y + 10.0, w, h)
+        placement.add(room_id, geometry[room_id])
+    placed = _place_template(second, "S", placement, geometry, _neighbours(spec), walls, random.Random(0))
+    assert placed is not None and "S" not in placed
+    ring = spec.restricted_to(frozenset(second), "ring")
+    assert hard_violations(ring, {**placed, "S": geometry["S"]}) == []
+    # a shared room of another shape cannot be laid over: the block is not used
+    x, y, w, h = geometry["S"]
+    geometry["S"] = (x, y, w + 1.0, h)
+    assert _place_template(second, "S", placement, geometry, _neighbours(spec), walls, random.Random(0)) is None
