@@ -32,11 +32,12 @@ import os
 import random
 import sys
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
 from layoutdsl.compile import lshape
 from layoutdsl.compile.generate import RoomSizes, cycle_blocks, generate_geometry
+from layoutdsl.compile.ladders import ladder_template
 from layoutdsl.syntax.ast import Room, Spec
 
 
@@ -844,7 +845,7 @@ def construct_start(
     problem = _Problem.of(spec)
     rng = random.Random(seed)
     has_hints = use_hints and hint_geometry(spec) is not None
-    templates = [] if has_hints else block_templates(spec, seed, deadline)
+    templates = None if has_hints else _TemplateSets(spec, seed, deadline)
     candidates = list(_seed_geometries(spec, rng, randomize, use_hints, templates))
     for index, (kind, make_geometry) in enumerate(candidates):
         left = deadline - time.monotonic()
@@ -929,10 +930,15 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
     """
     blocks = [b for b in cycle_blocks(spec) if len(b) < len(spec.rooms)]
     if not blocks:
-        return []
+        # a block itself: its ladder of corridors, if it has one, drawn outright
+        ladder = ladder_template(spec, random.Random(seed))
+        if ladder is None or hard_violations(spec.restricted_to(frozenset(ladder), spec.name), ladder):
+            return []
+        return [ladder]
     budget_end = time.monotonic() + BLOCK_SHARE * max(0.0, deadline - time.monotonic())
     total = sum(len(b) for b in blocks)
     templates = []
+    solved: dict[str, Rect] = {}
     for block in blocks:
         left = budget_end - time.monotonic()
         # a block's first repair rounds take about a second: less than BLOCK_MIN_SECONDS
@@ -942,17 +948,69 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
         total -= len(block)
         if deadline - time.monotonic() < 2 * share:
             break
-        rects = construct_start(block_spec(spec, block), seed=seed, use_hints=False,
-                                deadline=time.monotonic() + share)
+        # a room two blocks share keeps the shape the first block gave it, so the second
+        # can be laid over it (measured on school_hendersonhighschool: a hall solved in
+        # two shapes left the gym of the second block 7.7 m from it)
+        shared = {room_id: solved[room_id][2:] for room_id in block if room_id in solved}
+        rects = construct_start(_with_shapes(block_spec(spec, block), shared), seed=seed,
+                                use_hints=False, deadline=time.monotonic() + share)
         _debug(f"block of {len(block)} rooms: {'solved' if rects else 'not solved'}")
         if rects is not None:
             # the generator places rooms; an L-room's arm is seeded again beside its box
-            templates.append(lshape.rooms_only(spec, rects))
+            rects = lshape.rooms_only(spec, rects)
+            templates.append(rects)
+            solved.update(rects)
     return templates
 
 
+def _with_shapes(spec: Spec, shapes: dict[str, tuple[float, float]]) -> Spec:
+    """The spec with these rooms' sides fixed to (w, h), either way round."""
+    if not shapes:
+        return spec
+    rooms = []
+    for room in spec.rooms:
+        if room.id in shapes:
+            w, h = shapes[room.id]
+            room = replace(room, min_w=w, max_w=w, target_w=w, min_h=h, max_h=h, target_h=h)
+        rooms.append(room)
+    return replace(spec, rooms=tuple(rooms))
+
+
+class _TemplateSets:
+    """Solved cycle blocks for each generated geometry: a fresh set per try.
+
+    How a block was solved decides whether the rest of the building can hang off it: one
+    set of templates can leave no room for a block room's outside doors. Measured on
+    school_wilbraham (seed 3): 0 of 8 generated geometries repaired with the blocks solved
+    from seed 3, 8 of 8 with those solved from seed 0. So try k gets the blocks solved
+    from its own seed (seed + k * TEMPLATE_SEED_STEP), the first set with BLOCK_SHARE of
+    the time, later ones with at most TEMPLATE_RESOLVE_FACTOR times what the first took.
+    """
+
+    def __init__(self, spec: Spec, seed: int, deadline: float):
+        self.spec, self.seed, self.deadline = spec, seed, deadline
+        began = time.monotonic()
+        self.sets = [block_templates(spec, seed, deadline)]
+        self.first_seconds = time.monotonic() - began
+
+    def get(self, index: int) -> list[dict[str, Rect]]:
+        while len(self.sets) <= index:
+            budget = BLOCK_MIN_SECONDS + TEMPLATE_RESOLVE_FACTOR * self.first_seconds
+            deadline = min(self.deadline, time.monotonic() + budget / BLOCK_SHARE)
+            self.sets.append(block_templates(self.spec, self.seed + len(self.sets) * TEMPLATE_SEED_STEP,
+                                             deadline))
+        return self.sets[index]
+
+
+TEMPLATE_SEED_STEP = 7919
+"""Seed distance between the template sets of one construction (a prime, so the sets of
+neighbouring construction seeds do not coincide)."""
+
+TEMPLATE_RESOLVE_FACTOR = 2.0
+
+
 def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints: bool = True,
-                     templates: list[dict[str, Rect]] | None = None):
+                     templates: _TemplateSets | None = None):
     """(kind, maker) of each seed geometry to try, best first; each is built when needed."""
     has_hints = use_hints and hint_geometry(spec) is not None
     makers = []
@@ -970,7 +1028,8 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints:
     # some 28-36-room plans with cycles), so neither may starve the other of time
     for index in range(max(GENERATED_TRIES, GRAPH_TRIES)):
         if index < GENERATED_TRIES:
-            makers.append(("generated", lambda: generate_geometry(spec, rng, templates=templates or ())))
+            makers.append(("generated", lambda index=index: generate_geometry(
+                spec, rng, templates=templates.get(index) if templates else ())))
         if index < GRAPH_TRIES:
             makers.append(("graph", lambda: construct_geometry(spec, rng)))
     return makers

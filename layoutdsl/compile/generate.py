@@ -342,13 +342,19 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
         put(room_id, (x, y, w, h))
 
     unplaced = [room.id for room in spec.rooms if room.id not in geometry]
+    dropped: set[int] = set()
     while unplaced:
         room_id = _next_room(unplaced, geometry, neighbours, corridor, degree, sides, tiebreak)
-        pending = [t for t in templates if room_id in t and not all(r in geometry for r in t)]
+        pending = [t for t in templates if room_id in t and not all(r in geometry for r in t)
+                   and id(t) not in dropped]
         if pending:
             # a cycle block: all its rooms at once, as they were solved together
-            for other, rect in _place_template(pending[0], room_id, placement, geometry, neighbours,
-                                                walls, rng).items():
+            placed = _place_template(pending[0], room_id, placement, geometry, neighbours, walls, rng)
+            if placed is None:
+                # it shares a placed room solved in another shape: its rooms go one by one
+                dropped.add(id(pending[0]))
+                continue
+            for other, rect in placed.items():
                 put(other, rect)
                 if other in unplaced:
                     unplaced.remove(other)
@@ -356,18 +362,21 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
         unplaced.remove(room_id)
         own_depth, foreign = _halos(room_id, unplaced, geometry, sides, neighbours, degree)
         partners = _cycle_partners(room_id, geometry, sides, neighbours)
+        corridor_anchors = {n for n in neighbours[room_id] if corridor[room_id] and corridor[n]}
         put(room_id, _best_place(room_id, placement, sides[room_id], neighbours[room_id],
                                  walls, geometry, on_boundary[room_id], rng, own_depth,
-                                 foreign, partners))
+                                 foreign, partners, corridor_anchors))
     fixed = set(_fixed_points(spec))
     shift_fixed = set(fixed)
     # the rooms of a placed block keep the places they were solved in: moving one alone
     # would only break the contacts that close its cycles
-    fixed |= {room_id for t in templates for room_id in t if room_id in geometry}
+    fixed |= {room_id for t in templates if id(t) not in dropped for room_id in t if room_id in geometry}
     if not shift_fixed and len(placement.rects):
         _centre_in_boundary(geometry, placement, width, height)
     for _ in range(REPLACE_PASSES):
-        if not _replace_worst(geometry, placement, sides, neighbours, walls, on_boundary, fixed):
+        moved = _replace_worst(geometry, placement, sides, neighbours, walls, on_boundary, fixed)
+        placement = _move_subtrees(geometry, placement, neighbours, walls, shift_fixed)
+        if not moved:
             break
     return geometry, sum(_room_defects(geometry, placement, neighbours, walls).values())
 
@@ -455,46 +464,64 @@ def cycle_blocks(spec: Spec) -> list[frozenset[str]]:
     return sorted(blocks, key=lambda b: (-len(b), sorted(b)))
 
 
-def _mirrored(template: Mapping[str, Rect], flip_x: bool, flip_y: bool) -> dict[str, Rect]:
-    """The template mirrored about its frame's axes: the same contacts, another building."""
+def _mirrored(template: Mapping[str, Rect], flip_x: bool, flip_y: bool,
+              turn: bool = False) -> dict[str, Rect]:
+    """The template mirrored about its frame's axes (and, with `turn`, about its diagonal:
+    x and y swapped): the same contacts, another building."""
+    if turn:
+        template = {room_id: (y, x, h, w) for room_id, (x, y, w, h) in template.items()}
     return {
         room_id: (-x - w if flip_x else x, -y - h if flip_y else y, w, h)
         for room_id, (x, y, w, h) in template.items()
     }
 
 
+SHAPE_TOLERANCE = 1e-3
+"""Metres two solutions of a room shared by two blocks may differ by and still be one
+(the solver leaves its sizes a few micrometres off the bounds they were pinned to)."""
+
+SYMMETRIES = [(flip_x, flip_y, turn) for turn in (False, True) for flip_x in (False, True)
+              for flip_y in (False, True)]
+"""The 8 images of a template: 4 mirror images, each also turned a quarter."""
+
+
 def _place_template(template: Mapping[str, Rect], room_id: str, placement: _Placement,
                     geometry: dict[str, Rect], neighbours: dict[str, list[str]],
-                    walls: dict[frozenset[str], float], rng: random.Random) -> dict[str, Rect]:
-    """Where a solved cycle block goes, as a rigid whole: its rooms not yet placed.
+                    walls: dict[frozenset[str], float], rng: random.Random) -> dict[str, Rect] | None:
+    """Where a solved cycle block goes, as a rigid whole: its rooms not yet placed (None
+    when it shares a placed room that has another shape there).
 
     A block with a room already placed (a room two blocks share) is laid over that room, in
-    each of its four mirror images; otherwise `room_id` is put against the sides of its placed
-    neighbours as a single room would be, and the rest of the block follows it. Candidates
-    are scored like single rooms: overlap, area outside the boundary, missing contacts with
-    placed rooms outside the block, growth of the building.
+    each of its 8 images (mirrored, turned) in which that room has the shape it was placed
+    with; otherwise `room_id` is put against the sides of its placed neighbours as a single
+    room would be, and the rest of the block follows it. Candidates are scored like single
+    rooms: overlap, area outside the boundary, missing contacts with placed rooms outside
+    the block, growth of the building.
     """
     width, height, walldim = placement.width, placement.height, placement.walldim
     todo = [r for r in template if r not in geometry]
     anchors = [r for r in template if r in geometry]
     offsets, shapes = [], []
-    for flip_x in (False, True):
-        for flip_y in (False, True):
-            shape = _mirrored(template, flip_x, flip_y)
-            if anchors:
-                # centre on the shared room as it was placed
-                ax, ay, aw, ah = geometry[anchors[0]]
-                sx, sy, sw, sh = shape[anchors[0]]
-                moves = np.array([[ax + aw / 2 - sx - sw / 2, ay + ah / 2 - sy - sh / 2]])
-            else:
-                x, y, w, h = shape[room_id]
-                placed = [n for n in neighbours[room_id] if n in geometry]
-                blocks = [_side_candidates(np.array(geometry[n]), w, h, walldim, walls[frozenset((room_id, n))],
-                                           placement.blockers, rng) for n in placed]
-                cands = np.vstack(blocks) if blocks else _free_candidates(placement, w, h, rng)
-                moves = cands[:, :2] - np.array([x, y])
-            offsets.append(moves)
-            shapes.append(np.array([shape[r] for r in todo], dtype=float))
+    for flip_x, flip_y, turn in SYMMETRIES:
+        shape = _mirrored(template, flip_x, flip_y, turn)
+        if anchors:
+            # laid over the shared room as it was placed, where it has that shape
+            ax, ay, aw, ah = geometry[anchors[0]]
+            sx, sy, sw, sh = shape[anchors[0]]
+            if abs(aw - sw) > SHAPE_TOLERANCE or abs(ah - sh) > SHAPE_TOLERANCE:
+                continue
+            moves = np.array([[ax - sx, ay - sy]])
+        else:
+            x, y, w, h = shape[room_id]
+            placed = [n for n in neighbours[room_id] if n in geometry]
+            blocks = [_side_candidates(np.array(geometry[n]), w, h, walldim, walls[frozenset((room_id, n))],
+                                       placement.blockers, rng) for n in placed]
+            cands = np.vstack(blocks) if blocks else _free_candidates(placement, w, h, rng)
+            moves = cands[:, :2] - np.array([x, y])
+        offsets.append(moves)
+        shapes.append(np.array([shape[r] for r in todo], dtype=float))
+    if not offsets:
+        return None
     # every (mirror image, offset) as len(todo) rectangles
     cand_shapes = np.concatenate([np.repeat(shape[None], len(moves), axis=0) for shape, moves in zip(shapes, offsets)])
     moves = np.concatenate(offsets)
@@ -549,6 +576,64 @@ def _room_defects(geometry: dict[str, Rect], placement: _Placement,
     return {room_id: float(values[i]) for room_id, i in index.items()}
 
 
+SUBTREE_GAIN = 1e-3
+"""Least drop of the total defect for which a subtree is moved."""
+
+
+def _move_subtrees(geometry: dict[str, Rect], placement: _Placement,
+                   neighbours: dict[str, list[str]], walls: dict[frozenset[str], float],
+                   pinned: set[str]) -> _Placement:
+    """Move, as rigid wholes, the parts of the building hanging off a door that is not
+    realised, so that door's rooms touch; returns the placement (rebuilt when one moved).
+
+    Most of a real room graph is trees hanging off the corridors: when the door on which
+    such a tree hangs (a bridge of the graph) is missing, moving its room alone, as
+    `_replace_worst` does, breaks every door further down the tree, and the repair stalls
+    on the same defect (measured on school_wilbraham: an entrance hanging between a
+    corridor and a four-room wing 5 m away stalled every repair round). Moved whole, in
+    any of its four mirror images, the tree keeps its own doors.
+    """
+    graph = nx.Graph()
+    graph.add_nodes_from(geometry)
+    graph.add_edges_from((a, b) for a in neighbours for b in neighbours[a] if a < b)
+    for u, v in sorted(nx.bridges(graph)):
+        index = {room_id: i for i, room_id in enumerate(placement.ids)}
+        shortfall = _contact_shortfall(placement.rects[index[u]:index[u] + 1], placement.rects[index[v]],
+                                       placement.walldim, walls[frozenset((u, v))])[0]
+        if shortfall <= 1e-6:
+            continue
+        graph.remove_edge(u, v)
+        side_u, side_v = nx.node_connected_component(graph, u), nx.node_connected_component(graph, v)
+        graph.add_edge(u, v)
+        if len(side_u) < len(side_v):
+            u, v, side_v = v, u, side_u
+        if side_v & pinned:
+            continue
+        rest = {room_id: rect for room_id, rect in geometry.items() if room_id not in side_v}
+        others = _placement_of(rest, placement)
+        template = {room_id: geometry[room_id] for room_id in geometry if room_id in side_v}
+        moved = _place_template(template, v, others, rest, neighbours, walls, _NO_DRAW)
+        if moved is None:
+            continue
+        before = sum(_room_defects(geometry, placement, neighbours, walls).values())
+        trial = {room_id: moved.get(room_id, rect) for room_id, rect in geometry.items()}
+        trial_placement = _placement_of(trial, placement)
+        if sum(_room_defects(trial, trial_placement, neighbours, walls).values()) < before - SUBTREE_GAIN:
+            geometry.update(trial)
+            placement = trial_placement
+    return placement
+
+
+def _placement_of(geometry: dict[str, Rect], like: _Placement) -> _Placement:
+    """A placement of these rooms, with the obstacles of `like`."""
+    placement = _Placement(like.width, like.height, like.walldim)
+    for row in like.blockers[:len(like.blockers) - len(like.rects)]:
+        placement.add(None, tuple(float(v) for v in row))
+    for room_id, rect in geometry.items():
+        placement.add(room_id, rect)
+    return placement
+
+
 def _blocker_index(placement: _Placement, room_index: int) -> int:
     """Row of the room in placement.blockers (obstacles come first there)."""
     return len(placement.blockers) - len(placement.rects) + room_index
@@ -599,6 +684,10 @@ class _MidDraw:
     def random() -> float:
         return 0.5
 
+    @staticmethod
+    def randrange(stop: int) -> int:
+        return 0
+
 
 _NO_DRAW = _MidDraw()
 
@@ -627,7 +716,8 @@ def _best_place(room_id: str, placement: _Placement, sides: tuple[float, float],
                 room_neighbours: list[str], walls: dict[frozenset[str], float],
                 geometry: dict[str, Rect], on_boundary: bool, rng: random.Random,
                 own_depth: float, foreign_halos: np.ndarray,
-                partners: dict[str, float] | None = None) -> Rect:
+                partners: dict[str, float] | None = None,
+                corridor_anchors: set[str] = frozenset()) -> Rect:
     """Where the room goes: the seeded pick among the best-scored candidate rectangles.
 
     Besides overlaps, a candidate pays (at HALO_WEIGHT) for the band of `own_depth` around
@@ -657,6 +747,8 @@ def _best_place(room_id: str, placement: _Placement, sides: tuple[float, float],
     for n in placed_neighbours:
         wall = walls[frozenset((room_id, n))]
         score += CONTACT_WEIGHT * _contact_shortfall(cands, np.array(geometry[n]), walldim, wall)
+        if n in corridor_anchors:
+            score += SIDE_BY_SIDE_WEIGHT * _side_by_side(cands, np.array(geometry[n]), walldim)
     score += COMPACT_WEIGHT * _bbox_growth(cands, placement.bbox(), width, height)
     if on_boundary:
         score += BOUNDARY_WEIGHT * _boundary_distance(cands, width, height)
@@ -671,6 +763,31 @@ def _best_place(room_id: str, placement: _Placement, sides: tuple[float, float],
     good = [int(i) for i in order[:TOP_CHOICES] if score[i] <= best + CHOICE_SLACK * scale]
     x, y, w, h = cands[good[rng.randrange(len(good))]]
     return (float(x), float(y), float(w), float(h))
+
+
+SIDE_BY_SIDE_WEIGHT = 4.0
+"""Per m² of the strip two corridors sharing a door would take from each other's rooms
+when they lie side by side (see _side_by_side)."""
+
+
+def _side_by_side(cands: np.ndarray, corridor: np.ndarray, walldim: float) -> np.ndarray:
+    """Per candidate corridor touching `corridor`: the length of wall they share beyond the
+    candidate's end, times the candidate's width.
+
+    Real corridors meet end to end or in a T, one's end against the other's side. Two laid
+    side by side along their length take each other's sides, where their rooms must hang:
+    measured on office_floorplanLOWER, two 30 m corridors placed so left their 16 rooms
+    piling over one another and no geometry repaired.
+    """
+    ox, oy, ow, oh = corridor
+    shared_y = np.clip(np.minimum(cands[:, 1] + cands[:, 3], oy + oh) - np.maximum(cands[:, 1], oy), 0, None)
+    shared_x = np.clip(np.minimum(cands[:, 0] + cands[:, 2], ox + ow) - np.maximum(cands[:, 0], ox), 0, None)
+    beside_x = (np.abs(cands[:, 0] - ox - ow - walldim) < 1e-6) | (np.abs(ox - cands[:, 0] - cands[:, 2] - walldim) < 1e-6)
+    beside_y = (np.abs(cands[:, 1] - oy - oh - walldim) < 1e-6) | (np.abs(oy - cands[:, 1] - cands[:, 3] - walldim) < 1e-6)
+    width = np.minimum(cands[:, 2], cands[:, 3])
+    excess = np.where(beside_x, np.clip(shared_y - width, 0, None), 0.0)
+    excess += np.where(beside_y, np.clip(shared_x - width, 0, None), 0.0)
+    return excess * width
 
 
 def _free_candidates(placement: _Placement, w: float, h: float, rng: random.Random) -> np.ndarray:

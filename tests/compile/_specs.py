@@ -45,3 +45,14 @@ def cycle_spec() -> Spec:
     adjacencies = [adjacent(a, b) for a, b in zip(ring, ring[1:] + ring[:1])]
     adjacencies += [adjacent("A", "F"), adjacent("C", "G")]
     return Spec("ring", tuple(rooms), Boundary(20.0, 20.0), tuple(adjacencies))
+
+
+def ladder_spec() -> Spec:
+    """Two long corridors joined by three short ones (a ladder: two independent cycles),
+    with an office on each rung."""
+    rooms = [room("A", 20.0, 2.0, rtype="C", var=0.4), room("B", 20.0, 2.0, rtype="C", var=0.4)]
+    rooms += [room(f"K{i}", 2.0, 8.0 + i, rtype="C", var=0.4) for i in range(3)]
+    rooms += [room(f"R{i}", 4.0, 3.5) for i in range(3)]
+    adjacencies = [adjacent(rail, f"K{i}", kind="i") for rail in "AB" for i in range(3)]
+    adjacencies += [adjacent(f"K{i}", f"R{i}") for i in range(3)]
+    return Spec("ladder", tuple(rooms), Boundary(30.0, 30.0), tuple(adjacencies))

@@ -142,3 +142,122 @@ def test_a_solved_cycle_block_is_placed_as_a_rigid_whole():
     assert verify(ring, placed) == []
     # and the construction from it is a verified layout of the whole spec
     assert generated_layout(spec, 3) is not None
+
+
+def test_a_tree_hanging_off_a_missing_door_moves_as_a_whole():
+    from layoutdsl.compile.generate import _contact_shortfall, _move_subtrees, _neighbours, _placement_of, _Placement
+
+    spec = tree_spec()
+    walldim = spec.settings.walldim
+    # C0 at the bottom with its six rooms; C1 (and R6, R7 hanging off it) drawn far away
+    # in the top corner: the door C0-C1, a bridge of the graph, is missing
+    geometry = {"C0": (1.0, 1.0, 14.0, 2.0)}
+    for i in range(6):
+        geometry[f"R{i}"] = (1.0 + i * (2.0 + walldim), 3.0 + walldim, 2.0, 3.5)
+    geometry["C1"] = (20.0, 8.0, 2.0, 8.0)
+    geometry["R6"] = (22.0 + walldim, 8.0, 1.5, 3.5)
+    geometry["R7"] = (22.0 + walldim, 12.0, 1.5, 3.5)
+    walls = {frozenset((a.a, a.b)): a.door / spec.settings.door_utilization for a in spec.adjacencies}
+    placement = _placement_of(geometry, _Placement(spec.boundary.w, spec.boundary.h, walldim))
+    before = {r: geometry[r] for r in ("C1", "R6", "R7")}
+
+    def shortfall(a, b):
+        import numpy as np
+        return _contact_shortfall(np.array([geometry[a]]), np.array(geometry[b]), walldim,
+                                  walls[frozenset((a, b))])[0]
+
+    assert shortfall("C0", "C1") > 1.0
+    _move_subtrees(geometry, placement, _neighbours(spec), walls, pinned=set())
+    assert shortfall("C0", "C1") < 1e-6
+    # the tree kept its own doors and its shape (moved, perhaps mirrored; never resized)
+    assert shortfall("C1", "R6") < 1e-6 and shortfall("C1", "R7") < 1e-6
+    assert {r: geometry[r][2:] for r in before} == {r: rect[2:] for r, rect in before.items()}
+    assert geometry["C1"] != before["C1"]
+    # the rest of the building stayed where it was
+    assert geometry["C0"] == (1.0, 1.0, 14.0, 2.0)
+
+
+def test_each_generated_try_gets_its_own_solved_blocks():
+    from layoutdsl.compile.construct import _TemplateSets
+
+    sets = _TemplateSets(cycle_spec(), seed=0, deadline=time.monotonic() + 30)
+    first, second = sets.get(0), sets.get(1)
+    assert first and second
+    assert set(first[0]) == set(second[0]) == set("ABCDE")
+    # solved from other seeds: the same rooms, another solution of the block
+    assert first[0] != second[0]
+    assert sets.get(1) is second  # solved once, kept
+
+
+def test_corridors_sharing_a_door_meet_end_on_not_side_by_side():
+    import numpy as np
+
+    from layoutdsl.compile.generate import _side_by_side
+
+    walldim = 0.2
+    corridor = np.array([0.0, 0.0, 20.0, 2.0])  # 20 m along x
+    cands = np.array([
+        [0.0, 2.2, 20.0, 2.0],   # parallel, sharing its whole 20 m side: 18 m beyond its end
+        [9.0, 2.2, 2.0, 12.0],   # a T: its 2 m end against the corridor's side
+        [20.2, 0.0, 15.0, 2.0],  # end to end
+        [10.0, 2.2, 15.0, 2.0],  # parallel, sharing 10 m: 8 m beyond its end
+    ])
+    assert _side_by_side(cands, corridor, walldim).tolist() == pytest.approx([36.0, 0.0, 0.0, 16.0])
+
+
+def test_a_ladder_of_corridors_is_drawn_with_every_rung_spanning_the_rails():
+    from _specs import ladder_spec
+
+    from layoutdsl.compile.construct import block_spec, hard_violations
+    from layoutdsl.compile.generate import cycle_blocks
+    from layoutdsl.compile.ladders import find_ladder, ladder_template
+
+    spec = ladder_spec()
+    (block,) = cycle_blocks(spec)
+    ring = block_spec(spec, block)
+    assert find_ladder(ring) == ("A", "B", ["K0", "K1", "K2"])
+    turned = set()
+    for seed in range(6):
+        rects = ladder_template(ring, random.Random(seed))
+        assert rects is not None and set(rects) == set("AB") | {"K0", "K1", "K2"}
+        # every door among the ladder's rooms, sizes within bounds, no overlaps
+        assert hard_violations(ring.restricted_to(frozenset(rects), "ladder"), rects) == []
+        # the rungs share one length: the gap between the rails
+        spans = {round(max(rects[k][2:]), 9) for k in ("K0", "K1", "K2")}
+        assert len(spans) == 1
+        turned.add(rects["A"][2] < rects["A"][3])
+    assert turned == {False, True}  # rails along x for some seeds, along y for others
+    # and the whole spec, offices included, compiles from it
+    assert generated_layout(spec, 0) is not None
+
+
+def test_blocks_sharing_a_room_give_it_one_shape_and_are_laid_over_it():
+    from _specs import adjacent, room
+
+    from layoutdsl.compile.construct import block_templates, hard_violations
+    from layoutdsl.compile.generate import _neighbours, _place_template, _Placement
+    from layoutdsl.syntax.ast import Spec
+
+    # two triangles of rooms sharing the hall S (the bow tie): two blocks, one room in both
+    rooms = (room("S", 8.0, 5.0), room("A", 4.0, 3.0), room("B", 4.0, 3.0),
+             room("C", 4.0, 3.0), room("D", 4.0, 3.0))
+    adjacencies = tuple(adjacent(a, b) for a, b in
+                        [("S", "A"), ("A", "B"), ("B", "S"), ("S", "C"), ("C", "D"), ("D", "S")])
+    spec = Spec("bowtie", rooms, Boundary(30.0, 30.0), adjacencies)
+    first, second = block_templates(spec, seed=1, deadline=time.monotonic() + 30)
+    assert sorted(first["S"][2:]) == pytest.approx(sorted(second["S"][2:]))
+    # laid over S as placed: S keeps its place, the other block's doors to it hold
+    walls = {frozenset((a.a, a.b)): a.door / spec.settings.door_utilization for a in adjacencies}
+    placement = _Placement(30.0, 30.0, spec.settings.walldim)
+    geometry = {}
+    for room_id, (x, y, w, h) in first.items():  # in the middle of the boundary
+        geometry[room_id] = (x + 10.0, y + 10.0, w, h)
+        placement.add(room_id, geometry[room_id])
+    placed = _place_template(second, "S", placement, geometry, _neighbours(spec), walls, random.Random(0))
+    assert placed is not None and "S" not in placed
+    ring = spec.restricted_to(frozenset(second), "ring")
+    assert hard_violations(ring, {**placed, "S": geometry["S"]}) == []
+    # a shared room of another shape cannot be laid over: the block is not used
+    x, y, w, h = geometry["S"]
+    geometry["S"] = (x, y, w + 1.0, h)
+    assert _place_template(second, "S", placement, geometry, _neighbours(spec), walls, random.Random(0)) is None
