@@ -54,6 +54,10 @@ START_SHARE = 0.5
 PROBE_SHARE = 0.05
 """Share of the time limit (at most 5 s) for the presolve-only infeasibility probe."""
 
+L_START_SHARE = 0.8
+"""Share of the time limit the construction gets for a spec with L-shaped rooms, which has
+no fallback when the construction finds nothing; polishing gets the rest."""
+
 POLISH_SHARE = 0.1
 """Share of the time limit for polishing a start with its relations fixed (solve.polish)."""
 
@@ -163,7 +167,9 @@ def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, R
     Without a start there is nothing to build the boxes from: no layout (E902).
     """
     if rects_start is None:
-        rects_start = _provided_start(spec, options, start_provider, timings)
+        # no fallback takes over when the construction finds nothing (cycle decomposition
+        # solves the thesis' model of rectangles), so it gets the time that would be its
+        rects_start = _provided_start(spec, options, start_provider, timings, share=L_START_SHARE)
     rects_start, method = _verified_start(spec, rects_start)
     if rects_start is None:
         timings["total"] = time.monotonic() - began
@@ -216,10 +222,10 @@ def _presolve_probe(model, options: SolveOptions, timings: dict[str, float]) -> 
 
 
 def _provided_start(spec: Spec, options: SolveOptions, start_provider: StartProvider | None,
-                    timings: dict[str, float]) -> dict[str, Rect] | None:
+                    timings: dict[str, float], share: float = START_SHARE) -> dict[str, Rect] | None:
     """The start provider's rectangles (default: the construction), in its share of the time."""
     provider = start_provider or default_start_provider
-    share = replace(options, time_limit=max(0.1, START_SHARE * options.time_limit))
+    share = replace(options, time_limit=max(0.1, share * options.time_limit))
     t0 = time.monotonic()
     rects_start = provider(spec, share)
     timings["start"] = time.monotonic() - t0
