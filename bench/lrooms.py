@@ -111,9 +111,9 @@ def compile_table(paths: list[Path], seeds: int, time_limit: float, search: bool
         f"# compile with L-rooms vs rectangular-only, time limit {time_limit:g} s, seeds 0..{seeds - 1}, "
         f"{os.cpu_count()} cores shared with other work (timings inflated by contention)",
         f"# both modes: {rule}",
-        "# L s: seconds to the verified L layout (the construction's, the answer); rect first: "
-        "seconds to the first verified rectangular layout; rect s: the whole rectangular compile; "
-        "ratio = L s / rect s",
+        "# L s / rect s: the whole compile with L-rooms / rectangular-only; rect first: seconds to "
+        "the first verified rectangular layout; graph: the L layout's portals are exactly the "
+        "spec's adjacencies; ratio = L s / rect s",
         f"{'plan':40} {'L':>3} {'seed':>4} {'L s':>7} {'L ok':>5} {'graph':>5} {'rect first':>10} {'rect s':>7} "
         f"{'rect ok':>7} {'ratio':>6}",
     ]
