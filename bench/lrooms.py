@@ -151,7 +151,6 @@ def realism_table(paths: list[Path], variants: int, time_limit: float, workdir: 
     """The thesis' experiment (§6.5.3) with and without L-rooms: per plan and mode, the
     exploration effort per m² and the entrance path lengths of the variants against the
     original's, through `layoutdsl evaluate` on the written building XMLs."""
-    import json
     import subprocess
 
     lines = [
