@@ -121,6 +121,10 @@ def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagno
             "try a longer limit (`--time-limit`), a larger boundary, wider size ranges "
             "(a larger variance when importing), `--emphasis feasibility`, or the cycle "
             "decomposition (`--strategy cycles`)"
+        ) if not spec.arms else (
+            "try a longer limit (`--time-limit`), another `--seed`, a larger boundary, wider "
+            "size ranges (a larger variance when importing), or rectangular rooms "
+            "(`layoutdsl import --rectangular-only`, which the cycle decomposition can also solve)"
         ),
     )
 
