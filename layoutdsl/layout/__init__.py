@@ -81,10 +81,12 @@ def union_outline(boxes: list[tuple[float, float, float, float]]) -> tuple[tuple
     polygon (an L, or a rectangle): its corners counter-clockwise, from the lowest-left one.
 
     Traced on the grid of the boxes' coordinates: from each corner the outline leaves in the
-    one direction that keeps the union on its left.
+    one direction that keeps the union on its left. Coordinates closer than WELD (solver
+    noise: an arm's x + w one nanometre short of its box's x) are one.
     """
-    xs = sorted({v for b in boxes for v in (b[0], b[2])})
-    ys = sorted({v for b in boxes for v in (b[1], b[3])})
+    xs, weld_x = _welded([v for b in boxes for v in (b[0], b[2])])
+    ys, weld_y = _welded([v for b in boxes for v in (b[1], b[3])])
+    boxes = [(weld_x[b[0]], weld_y[b[1]], weld_x[b[2]], weld_y[b[3]]) for b in boxes]
 
     def covered(i: int, j: int) -> bool:
         """Is grid cell (i, j), between xs[i], xs[i+1] and ys[j], ys[j+1], in the union?"""
@@ -119,6 +121,23 @@ def union_outline(boxes: list[tuple[float, float, float, float]]) -> tuple[tuple
         outline.append((i, j))
         current = (i, j)
     return tuple((xs[i], ys[j]) for i, j in outline)
+
+
+WELD = 1e-6
+"""Metres within which two coordinates of one room's outline are the same line (the
+verifier's tolerance)."""
+
+
+def _welded(values: list[float]) -> tuple[list[float], dict[float, float]]:
+    """The distinct coordinates, runs closer than WELD merged into their first, and the map
+    from each value to the coordinate that stands for it."""
+    kept: list[float] = []
+    stands_for: dict[float, float] = {}
+    for value in sorted(set(values)):
+        if not kept or value - kept[-1] > WELD:
+            kept.append(value)
+        stands_for[value] = kept[-1]
+    return kept, stands_for
 
 
 # A grid point is a corner when the outline turns there: the edge leaving it in a direction

@@ -92,3 +92,19 @@ def test_the_outline_of_an_l_has_six_corners_counter_clockwise() -> None:
     assert outline == ((0, 0), (10, 0), (10, 8), (8, 8), (8, 2), (0, 2))
     area = sum(x1 * y2 - x2 * y1 for (x1, y1), (x2, y2) in zip(outline, outline[1:] + outline[:1])) / 2
     assert area == 10 * 2 + 2 * 6  # positive: counter-clockwise; equal to the arms' areas
+
+
+def test_an_arm_a_nanometre_short_of_its_box_still_outlines_one_l() -> None:
+    """Solver noise: the arm's right edge 1e-9 m left of the box's. The outline is still the
+    L's six corners (it was the arm alone: the sliver between split the union), and the
+    layout built from such rectangles has the two edges on one line."""
+    from layoutdsl.layout.geometry import layout_from_rects
+
+    outline = union_outline([(14.23057974, 6.9, 19.76, 12.18), (12.49, 6.9, 14.230579739, 9.7)])
+    assert len(outline) == 6
+    spec, layout = _planted()
+    box = layout.room("C0")
+    rects = {room.id: (room.x, room.y, room.w, room.h) for room in layout.rooms}
+    rects["C0/arm"] = (box.arm[0], box.arm[1] + 1e-9, box.arm[2], box.arm[3] - 1e-9)
+    welded = layout_from_rects(spec, rects).room("C0")
+    assert welded.arm[1] == box.y2 and len(welded.polygon) == 6
