@@ -257,7 +257,7 @@ def variant_differences(spec, layouts):
     return pairwise, from_hints
 
 
-def _write_variants_report(spec, seed: int, source: str, layouts, pairwise, from_hints,
+def _write_variants_report(spec, seeds: list[int], source: str, layouts, pairwise, from_hints,
                            outdir: Path) -> Path:
     """NAME-variants.json: each variant's seed and differences, for comparing them later."""
     import json
@@ -268,9 +268,9 @@ def _write_variants_report(spec, seed: int, source: str, layouts, pairwise, from
         "spec": spec.name,
         "source": source,
         "variants": [
-            {"index": index, "seed": seed + index - 1, "found": layout is not None,
+            {"index": index, "seed": seed, "found": layout is not None,
              "difference_from_hints": None if original is None else round(original, 4)}
-            for index, (layout, original) in enumerate(zip(layouts, from_hints), start=1)
+            for index, (layout, original, seed) in enumerate(zip(layouts, from_hints, seeds), start=1)
         ],
         "pairwise_differences": [
             {"a": i, "b": j, "difference": round(value, 4)} for (i, j), value in sorted(pairwise.items())
@@ -296,7 +296,7 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
     paths = list(result.paths)
     if outdir is not None and count:
         try:
-            paths.append(_write_variants_report(spec, options.seed, args.variants_from, layouts,
+            paths.append(_write_variants_report(spec, result.seeds, args.variants_from, layouts,
                                                 pairwise, from_hints, outdir))
         except OSError as error:
             return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
