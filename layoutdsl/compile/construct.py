@@ -909,6 +909,10 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
     return templates
 
 
+PIN_SLACK = 1e-4
+"""Metres a shared room's pinned sides may vary by (below generate.SHAPE_TOLERANCE)."""
+
+
 def _with_shapes(spec: Spec, shapes: dict[str, tuple[float, float]]) -> Spec:
     """The spec with these rooms' sides fixed to (w, h), either way round."""
     if not shapes:
@@ -917,7 +921,10 @@ def _with_shapes(spec: Spec, shapes: dict[str, tuple[float, float]]) -> Spec:
     for room in spec.rooms:
         if room.id in shapes:
             w, h = shapes[room.id]
-            room = replace(room, min_w=w, max_w=w, target_w=w, min_h=h, max_h=h, target_h=h)
+            # a hair of slack: bounds pinned exactly leave the solver's safety margins
+            # (SAFETY) no room, and the verifier then rejects the block by a micrometre
+            room = replace(room, min_w=w - PIN_SLACK, max_w=w + PIN_SLACK, target_w=w,
+                           min_h=h - PIN_SLACK, max_h=h + PIN_SLACK, target_h=h)
         rooms.append(room)
     return replace(spec, rooms=tuple(rooms))
 
