@@ -61,7 +61,8 @@ def add_parser(subparsers) -> None:
     parser.add_argument("--variants", type=positive_int, metavar="N",
                         help="write N different verified layouts, NAME-1.* ... NAME-N.*: new "
                         "arrangements generated from the room graph (seed, seed+1, ...), each "
-                        "its first verified layout, polished")
+                        "its first verified layout, polished; one within 0.3 of an earlier "
+                        "variant, or without a layout, is redrawn with a later seed")
     parser.add_argument("--variants-from", choices=("graph", "hints"), default="graph",
                         help="graph (default): variants ignore the spec's hints; hints: "
                         "variants perturb the hints (they stay close to the original plan)")
