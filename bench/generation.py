@@ -4,7 +4,7 @@ For each building XML file in FOLDER (default ../shared/floorplans beside the re
 WITHOUT hints (the default), compile at default settings, and print one row:
 
     plan, rooms, cycles, verified, seconds to the first verified layout, total seconds,
-    arrangement difference from the original (layoutdsl.evaluate.difference), generated /
+    arrangement difference from the original (layoutdsl.layout.difference), generated /
     original room area, fill (room area / bounding box of the rooms) and the original's fill
 
 and a summary line (verified count, median / max first-layout seconds, how many meet area
@@ -67,7 +67,7 @@ def _original(path: Path):
 
 
 def _layout_row(spec, layout, area, original_fill, centres) -> dict:
-    from layoutdsl.evaluate.difference import difference, layout_centres
+    from layoutdsl.layout.difference import difference, layout_centres
     from layoutdsl.layout.verify import verify
 
     rects = [(r.x, r.y, r.w, r.h) for r in layout.rooms]
@@ -201,7 +201,7 @@ def throughput(path: Path, minutes: float, workers: int, time_limit: float) -> d
     """Variants per minute of wall clock: `workers` processes compile seeds until time is up."""
     from itertools import combinations
 
-    from layoutdsl.evaluate.difference import difference
+    from layoutdsl.layout.difference import difference
 
     context = multiprocessing.get_context("fork")
     began = time.monotonic()
@@ -254,7 +254,7 @@ def _variants_of_plan(path: str, n: int, seed: int, time_limit: float, workers: 
     original, area and fill; pairwise differences."""
     from layoutdsl.solve import SolveOptions
     from layoutdsl.compile.variants import compile_variants
-    from layoutdsl.evaluate.difference import layout_centres, pairwise_differences
+    from layoutdsl.layout.difference import layout_centres, pairwise_differences
 
     spec, area, original_fill, centres = _original(Path(path))
     began = time.monotonic()

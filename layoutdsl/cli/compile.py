@@ -247,7 +247,7 @@ def variant_differences(spec, layouts):
     difference from the spec's hints, None without hints or layout). 1-based indices."""
     from itertools import combinations
 
-    from layoutdsl.evaluate.difference import difference, hint_centres, layout_centres
+    from layoutdsl.layout.difference import difference, hint_centres, layout_centres
 
     numbered = [(i, layout) for i, layout in enumerate(layouts, start=1) if layout is not None]
     pairwise = {(i, j): difference(layout_centres(a), layout_centres(b))

@@ -15,7 +15,7 @@ its relations fixed (SolveOptions.search off), so the same spec and seed give th
 bytes and a 50-room variant costs seconds, not the compile's full time limit.
 
 `diversity` is the plain share of room pairs whose relation differs; `compile --variants`
-reports the arrangement difference of layoutdsl.evaluate.difference (best of the 8
+reports the arrangement difference of layoutdsl.layout.difference (best of the 8
 rotations and mirrors) pairwise and from the hints, and writes NAME-variants.json.
 """
 
@@ -218,7 +218,7 @@ def compile_variants(
 
 
 MIN_PAIRWISE = 0.3
-"""Least arrangement difference (layoutdsl.evaluate.difference) a new-arrangement variant
+"""Least arrangement difference (layoutdsl.layout.difference) a new-arrangement variant
 must have from every earlier one; closer ones are redrawn with a later seed."""
 
 REDRAWS_PER_VARIANT = 2
@@ -235,7 +235,7 @@ def _redraw(spec: Spec, results: list, seeds: list[int], next_seed: int, options
     ones. Which variants are redrawn depends only on the layouts, so the outcome stays a
     function of the spec and seed wherever each variant's own stopping rule is.
     """
-    from layoutdsl.evaluate.difference import difference, layout_centres
+    from layoutdsl.layout.difference import difference, layout_centres
 
     budget = REDRAWS_PER_VARIANT * len(results)
     while budget > 0:

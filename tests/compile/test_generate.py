@@ -13,7 +13,7 @@ import pytest
 from layoutdsl.compile.construct import construct_start, rects_to_layout
 from layoutdsl.compile.generate import RoomSizes, generate_geometry
 from layoutdsl.compile.variants import compile_variants
-from layoutdsl.evaluate.difference import difference, layout_centres
+from layoutdsl.layout.difference import difference, layout_centres
 from layoutdsl.importer import import_building
 from layoutdsl.layout.verify import verify
 from layoutdsl.solve import SolveOptions
