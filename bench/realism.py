@@ -53,13 +53,14 @@ def run_source(plan: Path, work: Path, source: str, variants: int) -> dict:
     report = json.loads((report_dir / "report.json").read_text())
     original = report["original"]
     generated = report["generated"]
-    deviations = [abs(v) for g in generated for v in g["paths"].values() if v is not None]
+    deviation = [g["deviation"] for g in generated]
+    deviations = [abs(v) for d in deviation for v in d["paths"].values() if v is not None]
     explore = [g["exploration"].get("distance_per_m2") for g in generated]
     explore = [v for v in explore if v is not None]
     row.update(
-        difference_mean=statistics.fmean(g["arrangement_difference"] for g in generated),
-        difference_min=min(g["arrangement_difference"] for g in generated),
-        area=statistics.fmean(1 + g["room_area"] for g in generated),
+        difference_mean=statistics.fmean(d["arrangement_difference"] for d in deviation),
+        difference_min=min(d["arrangement_difference"] for d in deviation),
+        area=statistics.fmean(1 + d["room_area"] for d in deviation),
         path_dev=statistics.fmean(deviations) if deviations else None,
         unreachable=sum(p["generated_unreachable"] for p in report["path_pairs"]),
         explore=statistics.fmean(explore) if explore else None,

@@ -145,7 +145,7 @@ def difference_from_original(spec, layout) -> float | None:
     Imported plans carry each room's original place as a hint; a spec without hints has no
     original to compare with.
     """
-    from layoutdsl.evaluate.difference import difference, hint_centres, layout_centres
+    from layoutdsl.layout.difference import difference, hint_centres, layout_centres
 
     original = hint_centres(spec)
     if not original:

@@ -38,7 +38,7 @@ RECORD_FIELDS = (
 )
 """The manifest's columns, in order. status: 'done' or 'failed'; reason: why it failed;
 seconds: wall time of the building's process (a timing field); solve_status: the rule that
-stopped the solve; difference: from the original plan, 0..1 (evaluate.difference; null
+stopped the solve; difference: from the original plan, 0..1 (layout.difference; null
 without hints); area_m2: sum of the rooms' areas; files: paths relative to the output folder."""
 
 TIMING_FIELDS = ("seconds",)

@@ -61,7 +61,8 @@ def add_parser(subparsers) -> None:
     parser.add_argument("--variants", type=positive_int, metavar="N",
                         help="write N different verified layouts, NAME-1.* ... NAME-N.*: new "
                         "arrangements generated from the room graph (seed, seed+1, ...), each "
-                        "its first verified layout, polished")
+                        "its first verified layout, polished; one within 0.3 of an earlier "
+                        "variant, or without a layout, is redrawn with a later seed")
     parser.add_argument("--variants-from", choices=("graph", "hints"), default="graph",
                         help="graph (default): variants ignore the spec's hints; hints: "
                         "variants perturb the hints (they stay close to the original plan)")
@@ -250,7 +251,7 @@ def variant_differences(spec, layouts):
     difference from the spec's hints, None without hints or layout). 1-based indices."""
     from itertools import combinations
 
-    from layoutdsl.evaluate.difference import difference, hint_centres, layout_centres
+    from layoutdsl.layout.difference import difference, hint_centres, layout_centres
 
     numbered = [(i, layout) for i, layout in enumerate(layouts, start=1) if layout is not None]
     pairwise = {(i, j): difference(layout_centres(a), layout_centres(b))
@@ -261,7 +262,7 @@ def variant_differences(spec, layouts):
     return pairwise, from_hints
 
 
-def _write_variants_report(spec, seed: int, source: str, layouts, pairwise, from_hints,
+def _write_variants_report(spec, seeds: list[int], source: str, layouts, pairwise, from_hints,
                            outdir: Path) -> Path:
     """NAME-variants.json: each variant's seed and differences, for comparing them later."""
     import json
@@ -272,9 +273,9 @@ def _write_variants_report(spec, seed: int, source: str, layouts, pairwise, from
         "spec": spec.name,
         "source": source,
         "variants": [
-            {"index": index, "seed": seed + index - 1, "found": layout is not None,
+            {"index": index, "seed": seed, "found": layout is not None,
              "difference_from_hints": None if original is None else round(original, 4)}
-            for index, (layout, original) in enumerate(zip(layouts, from_hints), start=1)
+            for index, (layout, original, seed) in enumerate(zip(layouts, from_hints, seeds), start=1)
         ],
         "pairwise_differences": [
             {"a": i, "b": j, "difference": round(value, 4)} for (i, j), value in sorted(pairwise.items())
@@ -300,7 +301,7 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
     paths = list(result.paths)
     if outdir is not None and count:
         try:
-            paths.append(_write_variants_report(spec, options.seed, args.variants_from, layouts,
+            paths.append(_write_variants_report(spec, result.seeds, args.variants_from, layouts,
                                                 pairwise, from_hints, outdir))
         except OSError as error:
             return _error(f"cannot write to `{outdir}`: {error.strerror or error}")

@@ -502,7 +502,14 @@ def _place_template(template: Mapping[str, Rect], room_id: str, placement: _Plac
     todo = [r for r in template if r not in geometry]
     anchors = [r for r in template if r in geometry]
     offsets, shapes = [], []
+    extent = (max(x + w for x, _, w, _ in template.values()) - min(x for x, _, _, _ in template.values()),
+              max(y + h for _, y, _, h in template.values()) - min(y for _, y, _, _ in template.values()))
+    # turned a quarter only where the boundary holds the block that way
+    turns = [turn for turn, (w, h) in ((False, extent), (True, extent[::-1]))
+             if w <= width + 1e-9 and h <= height + 1e-9] or [False, True]
     for flip_x, flip_y, turn in SYMMETRIES:
+        if turn not in turns:
+            continue
         shape = _mirrored(template, flip_x, flip_y, turn)
         if anchors:
             # laid over the shared room as it was placed, where it has that shape

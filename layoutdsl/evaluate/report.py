@@ -15,7 +15,7 @@ from pathlib import Path
 import numpy as np
 
 from layoutdsl.emit.atomic import write_files_atomic
-from layoutdsl.evaluate.difference import difference
+from layoutdsl.layout.difference import difference
 from layoutdsl.importer.building import Building
 from layoutdsl.evaluate.metrics import shape_deviation, size_deviation
 from layoutdsl.evaluate.plan import EvaluateOptions, PlanMeasures, measure_plan

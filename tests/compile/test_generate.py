@@ -13,7 +13,7 @@ import pytest
 from layoutdsl.compile.construct import construct_start, rects_to_layout
 from layoutdsl.compile.generate import RoomSizes, generate_geometry
 from layoutdsl.compile.variants import compile_variants
-from layoutdsl.evaluate.difference import difference, layout_centres
+from layoutdsl.layout.difference import difference, layout_centres
 from layoutdsl.importer import import_building
 from layoutdsl.layout.verify import verify
 from layoutdsl.solve import SolveOptions
@@ -95,10 +95,10 @@ def test_graph_variants_differ_and_are_reproducible(tmp_path):
         assert verify(spec, layout) == []
     centres = [layout_centres(layout) for layout in result.layouts]
     pairwise = [difference(centres[i], centres[j]) for i, j in ((0, 1), (0, 2), (1, 2))]
-    assert all(value > 0 for value in pairwise), pairwise
-    again = compile_variants(spec, 1, seed=2, options=options, workers=1)
-    # variant 1 of seed 2 is variant 2 of seed 1: same seed, same geometry (the layout's
-    # solve info holds wall-clock seconds, so compare rooms and portals)
+    assert all(value >= 0.3 for value in pairwise), pairwise
+    again = compile_variants(spec, 1, seed=result.seeds[1], options=options, workers=1)
+    # a variant compiled alone from variant 2's seed is variant 2: same seed, same geometry
+    # (the layout's solve info holds wall-clock seconds, so compare rooms and portals)
     assert again.layouts[0].rooms == result.layouts[1].rooms
     assert again.layouts[0].portals == result.layouts[1].portals
 
@@ -115,7 +115,8 @@ def test_compile_variants_command_reports_pairwise_differences(tmp_path, capsys)
     assert code == 0, out
     assert "2 of 2 variants" in out and "pairwise    1-2 " in out
     report = json.loads((tmp_path / "out" / "tree-variants.json").read_text())
-    assert report["source"] == "graph" and [v["seed"] for v in report["variants"]] == [0, 1]
+    seeds = [v["seed"] for v in report["variants"]]
+    assert report["source"] == "graph" and seeds[0] == 0 and len(set(seeds)) == 2
     assert report["pairwise_differences"][0]["difference"] > 0
 
 
@@ -261,3 +262,34 @@ def test_blocks_sharing_a_room_give_it_one_shape_and_are_laid_over_it():
     x, y, w, h = geometry["S"]
     geometry["S"] = (x, y, w + 1.0, h)
     assert _place_template(second, "S", placement, geometry, _neighbours(spec), walls, random.Random(0)) is None
+
+
+def test_a_variant_close_to_an_earlier_one_is_redrawn_with_the_next_seed(monkeypatch):
+    from layoutdsl.compile import variants
+    from layoutdsl.layout import Layout
+
+    def grid(order) -> Layout:
+        # six rooms on a 3 x 2 grid, in this order
+        rects = {f"R{room}": ((i % 3) * 5.0, (i // 3) * 5.0, 4.0, 4.0) for i, room in enumerate(order)}
+        return rects_to_layout(spec, rects)
+
+    spec = replace(tree_spec(), rooms=tuple(r for r in tree_spec().rooms if r.id in {f"R{i}" for i in range(6)}),
+                   adjacencies=())
+    first, far, farther = grid(range(6)), grid((0, 1, 2, 4, 5, 3)), grid((0, 1, 2, 5, 3, 4))
+    centres = [layout_centres(layout) for layout in (first, far, farther)]
+    assert min(difference(a, b) for a, b in ((centres[0], centres[1]), (centres[0], centres[2]),
+                                             (centres[1], centres[2]))) >= 0.3
+    calls = []
+
+    def fake_run(spec_, jobs, workers):
+        calls.append([job[0] for job in jobs])
+        return [(far, None), (farther, None)][:len(jobs)] if len(calls) == 1 else [(farther, None)] * len(jobs)
+
+    monkeypatch.setattr(variants, "_run_jobs", fake_run)
+    # variant 2 is the first redrawn (a copy of variant 1), variant 3 found nothing
+    results = [(first, None), (grid(range(6)), None), (None, None)]
+    seeds = [10, 11, 12]
+    variants._redraw(spec, results, seeds, 13, None, workers=1)
+    assert calls == [[13, 14]]  # one round, the next unused seeds, in variant order
+    assert seeds == [10, 13, 14]
+    assert [layout for layout, _ in results] == [first, far, farther]

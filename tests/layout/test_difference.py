@@ -2,7 +2,7 @@
 
 import pytest
 
-from layoutdsl.evaluate.difference import (
+from layoutdsl.layout.difference import (
     difference,
     difference_by_symmetry,
     pairwise_differences,
