@@ -19,6 +19,7 @@ from pathlib import Path
 
 from layoutdsl.syntax.ast import (
     Adjacency,
+    Arm,
     Boundary,
     Cluster,
     ClusterMember,
@@ -253,11 +254,59 @@ def campus_constraints() -> tuple[Spec, Layout, str]:
     return spec, _layout(spec.name, 24.0, 17.0, spec, CAMPUS_PLACED, CAMPUS_OBSTACLES), header
 
 
+# ===== 5. An L-shaped corridor wrapping two offices (issue 14) =====
+
+L_ROOMS = """\
+C0 11 14 12 1.5 2.2 1.8 1 20 C CORRIDOR
+R0 3.5 5 4.5 3.5 5 4.5 1 1.4 R OFFICE
+R1 3.5 5 4.5 3.5 5 4.5 1 1.4 R OFFICE
+E0 2 3 2.5 2 3 2.5 1 1.5 E ENTRANCE"""
+L_ARM = Arm("C0", 1.5, 2.2, 1.8, 6, 9, 8, 1, 20)
+L_PLACED = [
+    # the corridor's long arm along the bottom, its second arm up the left side
+    ("C0", "C", "CORRIDOR", 0.0, 0.0, 12.0, 1.8),
+    # one office beside the second arm, one above the long arm: the L wraps both
+    ("R0", "R", "OFFICE", 2.0, 6.7, 4.5, 3.8),
+    ("R1", "R", "OFFICE", 5.3, 2.0, 4.5, 4.5),
+    ("E0", "E", "ENTRANCE", 10.0, 2.0, 2.5, 2.5),
+]
+L_ARM_PLACED = (0.0, 1.8, 1.8, 8.0)
+L_ADJ = "R0-C0 R1-C0 E0-C0:i R0-R1"
+
+
+def l_corridor() -> tuple[Spec, Layout, str]:
+    """An L-shaped corridor around two offices. Returns (spec, planted layout, header comment)."""
+    rooms = []
+    for line in L_ROOMS.splitlines():
+        parts = line.split()
+        rooms.append(Room(parts[0], *map(float, parts[1:9]), parts[9], " ".join(parts[10:])))
+    rooms[0] = replace(rooms[0], rho_cover=0.5, rho_error=0.5)
+    rooms[3] = replace(rooms[3], on_boundary=True)
+    spec = Spec(
+        "l_corridor", tuple(rooms), Boundary(12.5, 10.5), _adj(L_ADJ), arms=(L_ARM,),
+    )  # fmt: skip
+    layout = _layout(spec.name, 12.5, 10.5, spec, L_PLACED)
+    corridor = replace(layout.room("C0"), arm=L_ARM_PLACED)
+    placed = tuple(corridor if room.id == "C0" else room for room in layout.rooms)
+    portals = tuple(make_portal(*(next(r for r in placed if r.id == i) for i in (a.a, a.b)), a.kind, a.door)
+                    for a in spec.adjacencies)
+    header = (
+        "# An L-shaped corridor wrapping two rooms (issue 14). C0 is an L: its line in `rooms` is\n"
+        "# the long arm, its line in `arms` the second arm, joined flush at a corner with no wall\n"
+        "# between them; the arm line is tall where the room line is wide, so the arm runs\n"
+        "# across the long arm, as in a corridor turning a corner. The two offices sit in the\n"
+        "# L's inner corner (in the planted layout, bench/planted_specs.py, each has its door\n"
+        "# on a different arm) and the entrance opens onto the corridor from the boundary.\n"
+    )
+    return spec, replace(layout, rooms=placed, portals=portals), header
+
+
 BUILDERS = {
     "school_fig42": school_fig42,
     "office_small": office_small,
     "school_cycle": school_cycle,
     "campus_constraints": campus_constraints,
+    "l_corridor": l_corridor,
 }
 
 
@@ -272,7 +321,7 @@ def main(argv: list[str] | None = None) -> int:
         spec = replace(spec, path=str(SPECS / f"{name}.lay"))
         problems = [d for d in check_spec(spec)]
         violations = verify(spec, layout)
-        rooms_area = sum(r.target_w * r.target_h for r in spec.rooms)
+        rooms_area = sum(r.target_w * r.target_h for r in (*spec.rooms, *spec.arms))
         ratio = spec.boundary.w * spec.boundary.h / rooms_area
         print(f"{name:20} rooms {len(spec.rooms):3}  adjacencies {len(spec.adjacencies):3}  "
               f"boundary/target area {ratio:.2f}  lint {len(problems)}  violations {len(violations)}")  # fmt: skip

@@ -20,6 +20,7 @@ from layoutdsl.check.geometry import (
     reachable_ratios,
 )
 from layoutdsl.check.names import check_duplicate_ids, check_references, check_repeats
+from layoutdsl.check.shapes import check_arms
 from layoutdsl.check.topology import check_components, check_planarity
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.syntax.ast import Spec
@@ -30,6 +31,7 @@ CHECKS = (
     check_duplicate_ids,
     check_references,
     check_repeats,
+    check_arms,
     check_room_sizes,
     check_boundary,
     check_fit,

@@ -166,8 +166,11 @@ def _aspect_ratio_possible(room: Room) -> bool:
 
 
 def check_room_sizes(spec: Spec) -> Iterator[Diagnostic]:
-    """E216, E201-E205: each room's sizes and aspect ratios are consistent."""
-    for room in spec.rooms:
+    """E216, E201-E205: each room's sizes and aspect ratios are consistent, and each arm's
+    (an L-room's second rectangle is checked as a room of its own)."""
+    known = rooms_by_id(spec)
+    arms = [arm.as_room(known[arm.room]) for arm in spec.arms if arm.room in known]
+    for room in (*spec.rooms, *arms):
         broken = False
         for field, value, name in (("min_w", room.min_w, "minw"), ("min_h", room.min_h, "minh")):
             if value <= 0:
@@ -275,7 +278,10 @@ def check_fit(spec: Spec) -> Iterator[Diagnostic]:
     bw, bh = spec.boundary.w, spec.boundary.h
     total = 0.0
     counted = True
-    for room in spec.rooms:
+    known = rooms_by_id(spec)
+    # an L-room's arm is a rectangle of its own: it must fit and it takes area too
+    arms = [arm.as_room(known[arm.room]) for arm in spec.arms if arm.room in known]
+    for room in (*spec.rooms, *arms):
         if not (room.min_w > 0 and room.min_h > 0):
             counted = False
             continue
@@ -288,7 +294,7 @@ def check_fit(spec: Spec) -> Iterator[Diagnostic]:
                         node_span(room, "id"), "too big for the boundary",
                         "lower the room's minimum sizes or enlarge the boundary")  # fmt: skip
     free = bw * bh - _obstacle_area_inside(spec)
-    targets = sum(room.target_w * room.target_h for room in spec.rooms)
+    targets = sum(room.target_w * room.target_h for room in (*spec.rooms, *arms))
     if counted and total <= free * (1 + 1e-9) and targets > free * (1 + 1e-9):
         yield diag(spec, W_TARGETS_TOO_BIG,
                     f"the rooms' target sizes cover {targets:.2f} m² but the free boundary area is only {free:.2f} m²",

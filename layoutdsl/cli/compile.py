@@ -217,6 +217,10 @@ _STATUS_TEXT = {
 }
 
 
+def _status_text(spec, info) -> str:
+    return _STATUS_TEXT.get(info.status, info.status)
+
+
 def summary(spec, layout, written: list[Path]) -> str:
     """The one-screen summary printed on stdout."""
     info = layout.solve
@@ -234,7 +238,7 @@ def summary(spec, layout, written: list[Path]) -> str:
     if info is not None:
         gap = "-" if info.gap is None else f"{100 * info.gap:.2f} %"
         objective = "-" if info.objective is None else f"{info.objective:.4g}"
-        lines.append(f"  status      {_STATUS_TEXT.get(info.status, info.status)}")
+        lines.append(f"  status      {_status_text(spec, info)}")
         first = "" if info.first_feasible_seconds is None else f", first layout after {info.first_feasible_seconds:.1f} s"
         lines.append(f"  objective   {objective}, gap {gap}, {info.seconds:.1f} s{first} "
                      f"({info.method}, seed {info.seed})")
@@ -313,7 +317,7 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
             continue
         info = layout.solve
         objective = "-" if info is None or info.objective is None else f"{info.objective:.4g}"
-        status = "-" if info is None else _STATUS_TEXT.get(info.status, info.status)
+        status = "-" if info is None else _status_text(spec, info)
         original = from_hints[index - 1]
         versus = "" if original is None else f", difference from the hints {original:.2f}"
         lines.append(f"  {spec.name}-{index}: objective {objective}, {status}{versus}")

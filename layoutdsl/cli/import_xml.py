@@ -68,6 +68,15 @@ def add_parser(subparsers) -> None:
         help=f"quadratic weight of the aspect-ratio margin (default {_DEFAULTS.beta})",
     )  # fmt: skip
     parser.add_argument(
+        "--l-threshold", type=float, default=_DEFAULTS.l_threshold, metavar="F",
+        help="a space whose polygon covers less than F of its bounding box becomes an "
+        f"L-shaped room fitted to the polygon (default {_DEFAULTS.l_threshold}; 0: none)",
+    )  # fmt: skip
+    parser.add_argument(
+        "--rectangular-only", action="store_true",
+        help="every room a rectangle of its polygon's area, as the thesis imports (§5.3.1)",
+    )  # fmt: skip
+    parser.add_argument(
         "--keep-arrangement", dest="hints", action="store_true", default=False,
         help="write the rooms' places in the original plan as hints: compile starts from "
         "the original arrangement instead of generating a new one",
@@ -115,6 +124,8 @@ def run(args: argparse.Namespace) -> int:
             mindim=args.mindim,
             alpha=args.alpha,
             beta=args.beta,
+            l_threshold=args.l_threshold,
+            rectangular_only=args.rectangular_only,
             hints=args.hints,
         )
     except ValueError as error:
@@ -167,10 +178,14 @@ def run(args: argparse.Namespace) -> int:
     if not args.quiet and args.format != "json":
         where = "standard output" if to_stdout else f"`{args.output}`"
         print(
-            f"imported {len(spec.rooms)} rooms and {len(spec.adjacencies)} adjacencies into {where}",
+            f"imported {len(spec.rooms)} rooms{_l_rooms(spec)} and {len(spec.adjacencies)} adjacencies into {where}",
             file=sys.stderr,
         )
     return exitcodes.OK
+
+
+def _l_rooms(spec) -> str:
+    return f" ({len(spec.arms)} L-shaped)" if spec.arms else ""
 
 
 def _read_quietly(path: Path) -> str | None:

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from layoutdsl.compile import cycles
+from layoutdsl.compile import cycles, explain
 from layoutdsl.compile.pipeline import CompileResult, StartProvider, compile_from_start
 from layoutdsl.layout.geometry import Rect
 from layoutdsl.solve import ProgressCallback, SolveOptions
@@ -42,12 +42,16 @@ def compile_spec(
     no start and the room graph has cycles, it spends the time left on cycle decomposition
     (unless options.cycles_fallback is off).
     """
+    if spec.arms and options.strategy in ("cycles", "thesis"):
+        return CompileResult(None, [explain.strategy_without_l_rooms(spec, options.strategy)], "no_layout")
     if options.strategy == "cycles":
         return cycles.compile_with_cycles(spec, options, progress=progress)
     # The thesis' remedy when generation finds nothing (§5.5.3). SCIP from scratch, the
     # alternative, finds no layout from about 20 rooms up (solver scouting), so the time left
     # is better spent decomposing.
-    decompose = options.strategy == "auto" and options.cycles_fallback and cycles.cycle_rank(spec) > 0
+    # (not with L-rooms: the decomposition solves the thesis' model of rectangles)
+    decompose = (options.strategy == "auto" and options.cycles_fallback and not spec.arms
+                 and cycles.cycle_rank(spec) > 0)
     fallback = _decompose_cycles if decompose else None
     return compile_from_start(
         spec, options, start=start, start_provider=start_provider, progress=progress,

@@ -35,6 +35,7 @@ import time
 from dataclasses import dataclass, replace
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
+from layoutdsl.compile import lshape
 from layoutdsl.compile.generate import RoomSizes, cycle_blocks, generate_geometry
 from layoutdsl.compile.ladders import ladder_template
 from layoutdsl.syntax.ast import Room, Spec
@@ -101,9 +102,19 @@ class _Problem:
     pairs: tuple[Pair, ...]
     order: dict[str, int]
     big_m: float
+    joins: frozenset[Pair] = frozenset()
+    """The pairs of boxes that form one L-shaped room (lshape.py): joined, not apart."""
+    checked: Spec | None = None
+    """The spec a result is checked against, when `spec` is its boxes (lshape.boxes_spec)."""
+    crossing: dict[Pair, bool] | None = None
+    """Joined pairs whose arm runs across (True) or along (False) the box (lshape.crossings):
+    the two turn together."""
+    exact_walls: frozenset[frozenset[str]] = frozenset()
+    """Pairs kept exactly a wall apart, without SAFETY (lshape.beside_pairs)."""
 
     @staticmethod
-    def of(spec: Spec) -> _Problem:
+    def of(spec: Spec, joins: frozenset[Pair] = frozenset(), checked: Spec | None = None,
+           crossing: dict[Pair, bool] | None = None) -> _Problem:
         """Precompute the pairs and constants of the spec."""
         boundary = spec.boundary
         assert boundary is not None
@@ -130,6 +141,10 @@ class _Problem:
             pairs=tuple(pairs),
             order=order,
             big_m=max(boundary.w, boundary.h) + settings.walldim + longest_wall + 1.0,
+            joins=joins,
+            checked=checked,
+            crossing=crossing,
+            exact_walls=lshape.beside_pairs(spec, joins) if joins else frozenset(),
         )
 
     def rect(self, geometry: dict[str, Rect], thing: str) -> Rect:
@@ -189,6 +204,23 @@ def _add_adjacent(model, a: _Box, b: _Box, direction: str, walldim: float, wall:
         model.addCons(second.y - first.y - first.h - walldim <= slack)
         model.addCons(a.x + wall - b.x - b.w <= slack)
         model.addCons(b.x + wall - a.x - a.w <= slack)
+
+
+def _add_join(model, a: _Box, b: _Box, option: str, slack) -> None:
+    """a and b form one L-shaped room (lshape.JOIN_OPTIONS): a flush on `side` of b, no
+    wall between them, their edges flush at the `end` of the side they share."""
+    side, end = option.split(":")
+    if side in ("left", "right"):
+        first, second = (a, b) if side == "left" else (b, a)
+        flush = [first.x + first.w - second.x]
+        flush.append((a.y - b.y) if end == "lo" else (a.y + a.h - b.y - b.h))
+    else:
+        first, second = (a, b) if side == "below" else (b, a)
+        flush = [first.y + first.h - second.y]
+        flush.append((a.x - b.x) if end == "lo" else (a.x + a.w - b.x - b.w))
+    for difference in flush:
+        model.addCons(difference <= slack)
+        model.addCons(-difference <= slack)
 
 
 FINAL_STRETCH_COST = 1e4
@@ -324,6 +356,11 @@ def _add_rooms(model, problem: _Problem, orientations: dict[str, bool], turnable
                 rooms.deviation.append(room.rho_error * dev)
     for ob_id, (ox, oy, ow, oh) in problem.obstacles.items():
         rooms.boxes[ob_id] = _Box(ox, oy, ow, oh)
+    for (box, arm), crosses in (problem.crossing or {}).items():
+        # an L turns as a whole: its arm keeps running across (or along) its box
+        o_box, o_arm = rooms.orientation_vars.get(box), rooms.orientation_vars.get(arm)
+        if o_box is not None and o_arm is not None:
+            model.addCons(o_arm == (1 - o_box if crosses else o_box))
     return rooms
 
 
@@ -410,7 +447,8 @@ def _add_pair_relations(model, problem: _Problem, boxes: dict[str, _Box],
         wall = problem.walls.get(frozenset(pair))
         stretch = model.addVar(f"s_{a}_{b}", lb=0.0)
         pairs.stretches[pair] = stretch
-        pairs.penalty.append((ADJACENCY_STRETCH_WEIGHT if wall else 1.0) * stretch)
+        joined = pair in problem.joins
+        pairs.penalty.append((ADJACENCY_STRETCH_WEIGHT if wall or joined else 1.0) * stretch)
         if len(allowed) == 1:
             switches = [None]
         else:
@@ -419,8 +457,11 @@ def _add_pair_relations(model, problem: _Problem, boxes: dict[str, _Box],
             model.addCons(quicksum(switches) >= 1)
         for direction, on in zip(allowed, switches):
             slack = stretch if on is None else stretch + problem.big_m * (1 - on)
-            if wall is None:
-                _add_direction(model, boxes[a], boxes[b], direction, gap, slack)
+            if joined:
+                _add_join(model, boxes[a], boxes[b], direction, slack)
+            elif wall is None:
+                exact = frozenset(pair) in problem.exact_walls
+                _add_direction(model, boxes[a], boxes[b], direction, problem.walldim if exact else gap, slack)
             else:
                 _add_adjacent(model, boxes[a], boxes[b], direction, problem.walldim, wall, slack)
     return pairs
@@ -587,7 +628,8 @@ def rects_to_layout(spec: Spec, rects: dict[str, Rect]):
 
 def check_start(spec: Spec, rects: dict[str, Rect]) -> list[str]:
     """Violations of the rectangles: our own check, then the project's verifier."""
-    problems = hard_violations(spec, rects)
+    # our own check knows rectangles only; an L-room is judged by the verifier alone
+    problems = hard_violations(spec, rects) if not spec.arms else []
     if problems:
         return problems
     from layoutdsl.layout.verify import verify
@@ -690,6 +732,8 @@ def _repair(
             # no progress: the blamed rooms may need to turn, and the conflict's cause may
             # lie further out, so look a step further each time
             turnable |= blamed & set(orientations)
+            # the two boxes of an L turn together
+            turnable |= {other for pair in (problem.crossing or {}) if turnable & set(pair) for other in pair}
         for _ in range(stalls):
             blamed |= {n for thing in blamed for n in neighbours.get(thing, ())}
         orientations = dict(outcome.orientations)
@@ -704,11 +748,15 @@ def _first_options(problem: _Problem, geometry: dict[str, Rect],
     options: dict[Pair, tuple[str, ...]] = {
         pair: problem.axis_choices(geometry, pair)[:1] for pair in problem.pairs
     }
+    for pair in problem.joins:
+        options[pair] = (lshape.join_option(geometry[pair[0]], geometry[pair[1]]),)
     if free_defects:
         # where the geometry is wrong (rooms overlap, or a door's rooms do not touch) its
         # relation is a guess: let the first round choose the axis (measured on generated
         # geometries: fewer stalled rounds)
         for pair in problem.pairs:
+            if pair in problem.joins:
+                continue  # an L's two boxes touch by design
             distance = problem.distance(geometry, pair)
             wall = problem.walls.get(frozenset(pair))
             if distance < problem.walldim - 1e-6 or (wall and distance > problem.walldim + 1e-3):
@@ -736,7 +784,7 @@ def _final_layout(problem: _Problem, geometry: dict[str, Rect], outcome: _Outcom
     for rects in (final.rects if final else None, outcome.rects):
         if rects is None:
             continue
-        problems = check_start(problem.spec, rects)
+        problems = check_start(problem.checked or problem.spec, rects)
         if not problems:
             return rects
         _debug(f"    rejected: {problems[:3]}")
@@ -762,7 +810,10 @@ def _free_blamed_pairs(problem: _Problem, geometry: dict[str, Rect],
 
 def _widen(problem: _Problem, geometry: dict[str, Rect], pair: Pair,
            allowed: tuple[str, ...]) -> tuple[str, ...]:
-    """One more degree of freedom: one direction -> both axes -> all four directions."""
+    """One more degree of freedom: one direction -> both axes -> all four directions (for
+    the boxes of an L: one join -> every join)."""
+    if pair in problem.joins:
+        return allowed + tuple(o for o in lshape.JOIN_OPTIONS if o not in allowed)
     if len(allowed) == 1:
         both = problem.axis_choices(geometry, pair)
         return (allowed[0],) + tuple(d for d in both if d != allowed[0])
@@ -801,6 +852,13 @@ def construct_start(
         if left <= 0.05:
             return None
         geometry = _cover_points(spec, make_geometry())
+        candidate_problem = problem
+        if spec.arms:
+            # each seed geometry says which box of an L-room meets which neighbour
+            geometry = lshape.seed_arms(spec, geometry, rng)
+            boxes, joins = lshape.boxes_spec(spec, geometry)
+            candidate_problem = _Problem.of(boxes, joins=joins, checked=spec,
+                                            crossing=lshape.crossings(spec))
         # a hint geometry is the likeliest and is worth a long repair; graph geometries are
         # many short tries (measured: a fresh draw beats a long repair of a stuck one)
         if index == len(candidates) - 1:
@@ -813,7 +871,7 @@ def construct_start(
             share = min(left, max(GRAPH_TRY_SECONDS, 0.15 * left))
         _debug(f"geometry {index} ({kind}): {share:.1f}s")
         # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
-        rects = _repair(problem, geometry, time.monotonic() + share, seed,
+        rects = _repair(candidate_problem, geometry, time.monotonic() + share, seed,
                         max_stalls=MAX_STALLS if kind == "hints" else GRAPH_MAX_STALLS,
                         free_defects=kind == "generated")
         if rects is not None:
@@ -904,6 +962,8 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
                                 use_hints=False, deadline=time.monotonic() + share)
         _debug(f"block of {len(block)} rooms: {'solved' if rects else 'not solved'}")
         if rects is not None:
+            # the generator places rooms; an L-room's arm is seeded again beside its box
+            rects = lshape.rooms_only(spec, rects)
             templates.append(rects)
             solved.update(rects)
     return templates

@@ -66,7 +66,31 @@ E904 = register(
     "boundary\n10.5 6\n# two rooms at least 5 m wide and 0.2 m of wall do not fit in 10.5 m",
 )
 
+E905 = register(
+    "E905",
+    Severity.ERROR,
+    "strategy-without-l-rooms",
+    "Reports a compile of a spec with L-shaped rooms (an `arms` section) under a strategy "
+    "that places rectangles only: `thesis` (the thesis' model as written) or `cycles`.",
+    "Those strategies solve the thesis' model, in which every room is one rectangle; they "
+    "would drop the rooms' arms. The construction (strategy `auto`) places L-rooms.",
+    "arms\nC0 1.5 2.2 1.8 6 9 8 1 20\n# compiled with --strategy thesis",
+)
+
 _FALLBACK_SPAN = Span(1, 1, 1, 2)
+
+
+def strategy_without_l_rooms(spec: Spec, strategy: str) -> Diagnostic:
+    """E905: the strategy cannot place the spec's L-shaped rooms."""
+    arm = spec.arms[0]
+    return Diagnostic(
+        code=E905,
+        message=f"strategy `{strategy}` places rectangles only; room `{arm.room}` is L-shaped",
+        filename=spec.path,
+        span=_span(arm.span),
+        label="an L-shaped room",
+        help="compile with `--strategy auto` (the default): its construction places L-shaped rooms",
+    )
 
 
 def _span(node_span: Span | None) -> Span:
@@ -97,6 +121,10 @@ def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagno
             "try a longer limit (`--time-limit`), a larger boundary, wider size ranges "
             "(a larger variance when importing), `--emphasis feasibility`, or the cycle "
             "decomposition (`--strategy cycles`)"
+        ) if not spec.arms else (
+            "try a longer limit (`--time-limit`), another `--seed`, a larger boundary, wider "
+            "size ranges (a larger variance when importing), or rectangular rooms "
+            "(`layoutdsl import --rectangular-only`, which the cycle decomposition can also solve)"
         ),
     )
 

@@ -15,7 +15,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
 
-from layoutdsl.compile import explain
+from layoutdsl.compile import explain, lshape
 from layoutdsl.compile.construct import construct_start
 from layoutdsl.syntax.ast import Spec
 from layoutdsl.diagnostics import Diagnostic
@@ -56,6 +56,10 @@ the other half of a 60 s limit: the construction gets three quarters."""
 
 PROBE_SHARE = 0.05
 """Share of the time limit (at most 5 s) for the presolve-only infeasibility probe."""
+
+L_START_SHARE = 0.8
+"""Share of the time limit the construction gets for a spec with L-shaped rooms, which has
+no fallback when the construction finds nothing; polishing gets the rest."""
 
 POLISH_SHARE = 0.1
 """Share of the time limit for polishing a start with its relations fixed (solve.polish)."""
@@ -121,6 +125,8 @@ def compile_from_start(
     if options.strategy == "thesis":
         formulation = THESIS_AS_WRITTEN
         rects_start = None
+    if spec.arms:
+        return _compile_l_rooms(spec, options, rects_start, start_provider, progress, timings, began, deadline)
     t0 = time.monotonic()
     model = build_model(spec, formulation=formulation)
     timings["build"] = time.monotonic() - t0
@@ -149,6 +155,44 @@ def compile_from_start(
         return CompileResult(best[1], [], best[2], timings, outcome)
 
     return _no_layout(spec, options, outcome, failures, explain_infeasible, timings, began)
+
+
+def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, Rect] | None,
+                     start_provider: StartProvider | None, progress: ProgressCallback | None,
+                     timings: dict[str, float], began: float, deadline: float) -> CompileResult:
+    """The strategy 'auto' for a spec with L-shaped rooms: the same stages on its boxes.
+
+    The thesis' model places one rectangle per room, so it is built on the spec's boxes
+    (compile.lshape.boxes_spec: each L-room's arm a room of its own, each adjacency of an L
+    on the box the start realises it with) with each L's two boxes joined as the start
+    joins them (model.equations.join_l_arms). SCIP then polishes, searches neighbourhoods
+    and branches as for any spec; every candidate is verified against the spec itself.
+    Without a start there is nothing to build the boxes from: no layout (E902).
+    """
+    if rects_start is None:
+        # no fallback takes over when the construction finds nothing (cycle decomposition
+        # solves the thesis' model of rectangles), so it gets the time that would be its
+        rects_start = _provided_start(spec, options, start_provider, timings, share=L_START_SHARE)
+    rects_start, method = _verified_start(spec, rects_start)
+    if rects_start is None:
+        timings["total"] = time.monotonic() - began
+        return CompileResult(None, [explain.no_layout_in_time(spec, options)], "no_layout", timings)
+    boxes, joined = lshape.boxes_spec(spec, rects_start)
+    joins = {pair: lshape.join_option(rects_start[pair[0]], rects_start[pair[1]]) for pair in joined}
+    t0 = time.monotonic()
+    model = build_model(boxes, formulation=options.formulation, joins=joins, crossing=lshape.crossings(spec))
+    timings["build"] = time.monotonic() - t0
+    polished = _polish_start(model, boxes, options, rects_start, deadline, progress, timings)
+    outcome = _search_whole_model(model, boxes, options, rects_start, polished, deadline, progress, timings)
+    candidates = _candidates(model, outcome, polished, rects_start)
+    t0 = time.monotonic()
+    first = _first_feasible_seconds(outcome, method, timings)
+    best, failures = _best_verified(spec, options, candidates, outcome, method, first, began, model_spec=boxes)
+    timings["verify"] = time.monotonic() - t0
+    timings["total"] = time.monotonic() - began
+    if best is not None:
+        return CompileResult(best[1], [], best[2], timings, outcome)
+    return _no_layout(spec, options, outcome, failures, False, timings, began)
 
 
 def _progress_since(began: float, progress: ProgressCallback | None,
@@ -181,10 +225,10 @@ def _presolve_probe(model, options: SolveOptions, timings: dict[str, float]) -> 
 
 
 def _provided_start(spec: Spec, options: SolveOptions, start_provider: StartProvider | None,
-                    timings: dict[str, float]) -> dict[str, Rect] | None:
+                    timings: dict[str, float], share: float = START_SHARE) -> dict[str, Rect] | None:
     """The start provider's rectangles (default: the construction), in its share of the time."""
     provider = start_provider or default_start_provider
-    share = replace(options, time_limit=max(0.1, START_SHARE * options.time_limit))
+    share = replace(options, time_limit=max(0.1, share * options.time_limit))
     t0 = time.monotonic()
     rects_start = provider(spec, share)
     timings["start"] = time.monotonic() - t0
@@ -301,15 +345,16 @@ def _first_feasible_seconds(outcome: SolveOutcome, method: str, timings: dict[st
 
 def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dict[str, Rect], str]],
                    outcome: SolveOutcome, method: str, first: float | None,
-                   began: float) -> tuple[tuple[float, Layout, str] | None, list]:
+                   began: float, model_spec: Spec | None = None) -> tuple[tuple[float, Layout, str] | None, list]:
     """(objective, layout, status) of the best candidate that passes verification, or None;
-    and the violations of the candidates that failed."""
+    and the violations of the candidates that failed. The objective is the model's, of
+    `model_spec` when the model was built on another spec (an L-spec's boxes)."""
     failures = []
     best: tuple[float, Layout, str] | None = None
     for rects, status in candidates:
         # (5.1) with o chosen per room as the thesis' model may choose it: the best
         # orientation that satisfies (5.4)-(5.6)
-        objective = objective_of_rects(spec, rects)
+        objective = objective_of_rects(model_spec or spec, rects)
         # a tie (the solver's incumbent is the polished start, up to its tolerances) keeps
         # the earlier candidate, so the layout reports the rule that stopped the solve
         if best is not None and objective >= best[0] - 1e-6 * max(1.0, abs(best[0])):

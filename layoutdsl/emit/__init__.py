@@ -141,8 +141,8 @@ def check_options(
                 raise EmitError(f"layout `{layout.name}` has a portal to unknown room `{end}`")
     # The bitmaps hold a few bytes per cell; refuse sizes that would exhaust memory
     # instead of failing (or swapping) halfway through.
-    span_x = max(r.x2 for r in layout.rooms) - min(r.x for r in layout.rooms)
-    span_y = max(r.y2 for r in layout.rooms) - min(r.y for r in layout.rooms)
+    span_x = max(r.x2 for r in layout.parts()) - min(r.x for r in layout.parts())
+    span_y = max(r.y2 for r in layout.parts()) - min(r.y for r in layout.parts())
     cells = (span_x / resolution + 4) * (span_y / resolution + 4)
     if cells > MAX_BITMAP_CELLS:
         raise EmitError(

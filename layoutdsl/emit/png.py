@@ -25,7 +25,7 @@ from functools import cache
 
 from PIL import Image, ImageDraw, ImageFont
 
-from layoutdsl.layout import Layout, PlacedRoom, Portal
+from layoutdsl.layout import Layout, PlacedRoom, Portal, facing_parts
 from layoutdsl.syntax.ast import ROOM_TYPE_NAMES, ROOM_TYPES
 
 BACKGROUND = "#ffffff"
@@ -195,8 +195,8 @@ class _Frame:
 
     def __init__(self, layout: Layout, scale: float, margin: float) -> None:
         pad = layout.walldim
-        self.x_min = min([0.0, *(r.x for r in layout.rooms)]) - pad
-        self.y_max = max([layout.height, *(r.y2 for r in layout.rooms)]) + pad
+        self.x_min = min([0.0, *(r.x for r in layout.parts())]) - pad
+        self.y_max = max([layout.height, *(r.y2 for r in layout.parts())]) + pad
         self.scale = scale
         self.margin = margin
 
@@ -211,7 +211,8 @@ class _Frame:
 
 def _portal_primitives(layout: Layout, portal: Portal, frame: _Frame, wall_px: int) -> list[Primitive]:
     """The opening of a portal and its marks (jamb ticks for doors, a dashed line otherwise)."""
-    a, b = layout.room(portal.a), layout.room(portal.b)
+    # an L-room's door is in the wall of its arm that faces the other room
+    a, b = facing_parts(layout.room(portal.a), layout.room(portal.b))
     half = portal.width / 2
     cx, cy = portal.centre
     items: list[Primitive] = []
@@ -327,8 +328,8 @@ def drawing(layout: Layout, px_per_m: float | None = None) -> Drawing:
     frame = _Frame(layout, scale, margin)
     wall = max(layout.walldim, 0.05)
     wall_px = max(2, round(wall * scale))
-    plan_w = (max([layout.width, *(r.x2 for r in layout.rooms)]) + layout.walldim - frame.x_min) * scale
-    plan_h = (frame.y_max - (min([0.0, *(r.y for r in layout.rooms)]) - layout.walldim)) * scale
+    plan_w = (max([layout.width, *(r.x2 for r in layout.parts())]) + layout.walldim - frame.x_min) * scale
+    plan_h = (frame.y_max - (min([0.0, *(r.y for r in layout.parts())]) - layout.walldim)) * scale
 
     items: list[Primitive] = []
     title_font = base_font + 2
@@ -338,10 +339,11 @@ def drawing(layout: Layout, px_per_m: float | None = None) -> Drawing:
     bx1, by1 = frame.px(layout.width, 0.0)
     items.append(Line(((bx0, by0), (bx1, by0), (bx1, by1), (bx0, by1), (bx0, by0)), BOUNDARY, 1, (8.0, 6.0), tag="boundary"))
     # walls: each room grown by a wall thickness, then the interiors painted over them, so
-    # shared walls are exactly the gap between rooms and outer walls are one wall thick
-    for room in layout.rooms:
+    # shared walls are exactly the gap between rooms and outer walls are one wall thick; an
+    # L-room is its two rectangles, painted over each other's walls, so no wall is inside it
+    for room in layout.parts():
         items.append(frame.rect(room.x - wall, room.y - wall, room.x2 + wall, room.y2 + wall, fill=WALL, tag=f"wall {room.id}"))
-    for room in layout.rooms:
+    for room in layout.parts():
         items.append(frame.rect(room.x, room.y, room.x2, room.y2, fill=ROOM_TINTS.get(room.rtype, ROOM_TINTS["R"]), tag=f"room {room.id}"))
     for obstacle in layout.obstacles:
         tag = f"obstacle {obstacle.id}"
@@ -351,6 +353,7 @@ def drawing(layout: Layout, px_per_m: float | None = None) -> Drawing:
     for portal in layout.portals:
         items.extend(_portal_primitives(layout, portal, frame, wall_px))
     for room in layout.rooms:
+        room = max(room.parts, key=lambda part: part.w * part.h)  # the label goes in the larger arm
         left, top = frame.px(room.x, room.y2)
         right, bottom = frame.px(room.x2, room.y)
         size, lines, rotated = _fit_label(room, right - left, bottom - top, base_font)

@@ -24,7 +24,7 @@ import numpy as np
 from PIL import Image, ImageDraw
 
 from layoutdsl.importer.building import Building, Space
-from layoutdsl.layout import Layout, Portal
+from layoutdsl.layout import Layout, PlacedRoom, Portal, facing_parts
 
 DEFAULT_RESOLUTION = 0.05
 """Metres per cell: the resolution of the maps used in the thesis' experiments (§6.3)."""
@@ -119,10 +119,10 @@ def _layout_frame(layout: Layout, resolution: float) -> tuple[float, float, int,
     """Grid origin (x0, y0) and size (rows, cols) enclosing the rooms with an outer wall."""
     # Cropped to the rooms, not the boundary: unused boundary space is no part of the
     # building, and a simulator gains nothing from a slab of solid wall.
-    xs = [r.x for r in layout.rooms] or [0.0]
-    ys = [r.y for r in layout.rooms] or [0.0]
-    x2s = [r.x2 for r in layout.rooms] or [layout.width]
-    y2s = [r.y2 for r in layout.rooms] or [layout.height]
+    xs = [r.x for r in layout.parts()] or [0.0]
+    ys = [r.y for r in layout.parts()] or [0.0]
+    x2s = [r.x2 for r in layout.parts()] or [layout.width]
+    y2s = [r.y2 for r in layout.parts()] or [layout.height]
     # The outer wall is as thick as an inner one but never thinner than a cell: the one-cell
     # frame Stage needs and the wall are then the same pixels.
     wall = max(layout.walldim, resolution)
@@ -144,14 +144,33 @@ def room_cell_labels(layout: Layout, resolution: float = DEFAULT_RESOLUTION) -> 
     x0, y0, rows, cols = _layout_frame(layout, resolution)
     labels = np.full((rows, cols), -1, dtype=np.int32)
     for index, room in enumerate(layout.rooms):
-        c_lo, c_hi = _centre_range(room.x, room.x2, x0, resolution)
-        b_lo, b_hi = _centre_range(room.y, room.y2, y0, resolution)  # rows counted from bottom
-        c_lo, c_hi = max(c_lo, 1), min(c_hi, cols - 1)
-        b_lo, b_hi = max(b_lo, 1), min(b_hi, rows - 1)
-        if c_lo >= c_hi or b_lo >= b_hi:
-            continue
-        labels[rows - b_hi : rows - b_lo, c_lo:c_hi] = index
+        for x, y, x2, y2 in _interior_boxes(room, resolution):
+            c_lo, c_hi = _centre_range(x, x2, x0, resolution)
+            b_lo, b_hi = _centre_range(y, y2, y0, resolution)  # rows counted from bottom
+            c_lo, c_hi = max(c_lo, 1), min(c_hi, cols - 1)
+            b_lo, b_hi = max(b_lo, 1), min(b_hi, rows - 1)
+            if c_lo >= c_hi or b_lo >= b_hi:
+                continue
+            labels[rows - b_hi : rows - b_lo, c_lo:c_hi] = index
     return labels, (x0, y0)
+
+
+def _interior_boxes(room: PlacedRoom, resolution: float) -> list[tuple[float, float, float, float]]:
+    """(x, y, x2, y2) boxes whose cells are the room's: its rectangles, and for an L a bridge
+    half a cell across the line where its arms meet, so the cells centred on that line are
+    the room's too (a row of them would otherwise be a wall inside the L)."""
+    parts = room.parts
+    boxes = [(p.x, p.y, p.x2, p.y2) for p in parts]
+    if len(parts) == 2:
+        a, b = parts
+        half = resolution / 2
+        if math.isclose(a.x2, b.x, abs_tol=1e-6) or math.isclose(b.x2, a.x, abs_tol=1e-6):
+            line = a.x2 if math.isclose(a.x2, b.x, abs_tol=1e-6) else a.x
+            boxes.append((line - half, max(a.y, b.y), line + half, min(a.y2, b.y2)))
+        else:
+            line = a.y2 if math.isclose(a.y2, b.y, abs_tol=1e-6) else a.y
+            boxes.append((max(a.x, b.x), line - half, min(a.x2, b.x2), line + half))
+    return boxes
 
 
 def _separate_rooms(labels: np.ndarray) -> np.ndarray:
@@ -176,7 +195,7 @@ def _door_cells(
     portal: Portal, layout: Layout, x0: float, y0: float, rows: int, cols: int, resolution: float
 ) -> tuple[slice, slice] | None:
     """The (rows, cols) block of cells a portal opens: its width across the wall gap."""
-    a, b = layout.room(portal.a), layout.room(portal.b)
+    a, b = facing_parts(layout.room(portal.a), layout.room(portal.b))
     half = portal.width / 2
     cx, cy = portal.centre
     if portal.vertical:

@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from layoutdsl.emit.templating import format_number
-from layoutdsl.layout import Layout, PlacedRoom, shared_wall
+from layoutdsl.layout import Layout, PlacedRoom, facing_parts, shared_wall
 from layoutdsl.emit.raster import DEFAULT_RESOLUTION
 
 DEFAULT_WALL_HEIGHT = 2.5
@@ -112,7 +112,24 @@ def _interior(room: PlacedRoom, inset: float) -> Rect:
     return _rect(room.x + inset, room.y + inset, room.x2 - inset, room.y2 - inset)
 
 
-def _portal_rects(layout: Layout, interiors: dict[str, Rect], inset: float) -> tuple[list[Rect], list[Rect]]:
+def _interiors(room: PlacedRoom, inset: float) -> list[Rect]:
+    """A room's free interior: one rectangle, or an L's two arms and, when walls grew into
+    the rooms (inset > 0), the strip between the arms' shrunk interiors along their join:
+    an L has no wall inside."""
+    parts = room.parts
+    rects = [_interior(part, inset) for part in parts]
+    if len(parts) == 2 and inset > 0:
+        a, b = parts
+        if abs(a.x2 - b.x) < SNAP or abs(b.x2 - a.x) < SNAP:
+            line = a.x2 if abs(a.x2 - b.x) < SNAP else a.x
+            rects.append(_rect(line - inset, max(a.y, b.y) + inset, line + inset, min(a.y2, b.y2) - inset))
+        else:
+            line = a.y2 if abs(a.y2 - b.y) < SNAP else a.y
+            rects.append(_rect(max(a.x, b.x) + inset, line - inset, min(a.x2, b.x2) - inset, line + inset))
+    return rects
+
+
+def _portal_rects(layout: Layout, inset: float) -> tuple[list[Rect], list[Rect]]:
     """For each portal: the wall filling its rooms' gap along their common side, and its opening.
 
     The opening spans the portal's width centred on the portal, clipped to the side both
@@ -121,12 +138,13 @@ def _portal_rects(layout: Layout, interiors: dict[str, Rect], inset: float) -> t
     fills: list[Rect] = []
     openings: list[Rect] = []
     for portal in layout.portals:
-        a, b = layout.room(portal.a), layout.room(portal.b)
+        # an L-room's portal is in the wall of its arm that faces the other room
+        a, b = facing_parts(layout.room(portal.a), layout.room(portal.b))
         wall = shared_wall(a, b)
         if wall is None:  # the verifier never lets this through; nothing to open
             continue
         axis, _, lo, hi = wall
-        ia, ib = interiors[portal.a], interiors[portal.b]
+        ia, ib = _interior(a, inset), _interior(b, inset)
         half = portal.width / 2
         cx, cy = portal.centre
         if axis == "x":
@@ -199,16 +217,16 @@ def wall_geometry(layout: Layout, height: float = DEFAULT_WALL_HEIGHT) -> WallGe
         raise ValueError(f"layout `{layout.name}` has no rooms")
     inset = max(0.0, (MIN_WALL_THICKNESS - layout.walldim) / 2)
     thickness = layout.walldim + 2 * inset
-    interiors = {room.id: _interior(room, inset) for room in layout.rooms}
-    surrounds = [_rect(x0 - thickness, y0 - thickness, x1 + thickness, y1 + thickness) for x0, y0, x1, y1 in interiors.values()]
-    fills, openings = _portal_rects(layout, interiors, inset)
-    rects = [*surrounds, *interiors.values(), *fills, *openings]
+    interiors = [rect for room in layout.rooms for rect in _interiors(room, inset)]
+    surrounds = [_rect(x0 - thickness, y0 - thickness, x1 + thickness, y1 + thickness) for x0, y0, x1, y1 in interiors]
+    fills, openings = _portal_rects(layout, inset)
+    rects = [*surrounds, *interiors, *fills, *openings]
     xs = _snapped_axis([c for r in rects for c in (r[0], r[2])])
     ys = _snapped_axis([c for r in rects for c in (r[1], r[3])])
     grid = np.zeros((len(ys) - 1, len(xs) - 1), dtype=bool)
     for rect in (*surrounds, *fills):
         _paint(grid, xs, ys, rect, True)
-    for rect in interiors.values():
+    for rect in interiors:
         _paint(grid, xs, ys, rect, False)
     for rect in openings:
         _paint(grid, xs, ys, rect, False)

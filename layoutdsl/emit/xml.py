@@ -2,8 +2,8 @@
 
 Units follow the real files: 1 file unit = 1 cm (`represented_distance` 90 pixel ↔
 `real_distance` 90 cm), x to the right, y DOWNWARDS: y_file = (height − y_m) × 100. Space ids
-are the spec's room ids (§5.7). Each room's space_representation walks its four walls
-clockwise on screen from the top-left corner; a wall holding a portal is split there and the
+are the spec's room ids (§5.7). Each room's space_representation walks its walls (four,
+or an L-room's six) clockwise on screen from the top-left corner; a wall holding a portal is split there and the
 portal is a PORTAL segment on that room's own wall edge, as long as the door. Line segment
 and building ids are uuid5 values derived from the building name, room id and index, so
 the same layout always gives the same file. Obstacles have no element in this format and
@@ -55,20 +55,38 @@ def _uid(*parts: str) -> str:
     return str(uuid.uuid5(_NAMESPACE, "/".join(parts)))
 
 
-def _portal_span_on_edge(room: PlacedRoom, portal: Portal) -> tuple[str, float, float]:
-    """Which edge of `room` the portal opens in ('top', 'right', 'bottom', 'left') and its span."""
+Edge = tuple[tuple[float, float], tuple[float, float]]
+"""A wall edge of a room's outline, (start, end) in metres, walked clockwise on screen."""
+
+
+def _edges(room: PlacedRoom) -> list[Edge]:
+    """The room's outline clockwise on screen (y down) from its top-left corner, as the real
+    files walk it: 4 edges for a rectangle, 6 for an L."""
+    corners = list(reversed(room.polygon))  # the outline is counter-clockwise with y up
+    first = max(range(len(corners)), key=lambda i: (corners[i][1], -corners[i][0]))
+    corners = corners[first:] + corners[:first]
+    return [(corners[i], corners[(i + 1) % len(corners)]) for i in range(len(corners))]
+
+
+def _portal_edge(edges: list[Edge], portal: Portal) -> tuple[int, float, float] | None:
+    """(index of the edge the portal opens in, its span along that edge), or None.
+
+    The portal lies on the wall's middle line just outside the room: its edge is the
+    nearest parallel one that the door overlaps."""
     cx, cy = portal.centre
     half = portal.width / 2
-    room_cx, room_cy = room.centre
-    # The portal lies on the wall middle line, just outside this room: the side of the
-    # room's centre it falls on names the edge.
-    if portal.vertical:
-        edge = "right" if cx > room_cx else "left"
-        lo, hi = max(cy - half, room.y), min(cy + half, room.y2)
-    else:
-        edge = "top" if cy > room_cy else "bottom"
-        lo, hi = max(cx - half, room.x), min(cx + half, room.x2)
-    return edge, lo, hi
+    best = None
+    for index, ((x1, y1), (x2, y2)) in enumerate(edges):
+        vertical = x1 == x2
+        if vertical != portal.vertical:
+            continue
+        if vertical:
+            distance, (lo, hi) = abs(x1 - cx), (max(cy - half, min(y1, y2)), min(cy + half, max(y1, y2)))
+        else:
+            distance, (lo, hi) = abs(y1 - cy), (max(cx - half, min(x1, x2)), min(cx + half, max(x1, x2)))
+        if hi > lo and (best is None or distance < best[0]):
+            best = (distance, index, lo, hi)
+    return None if best is None else best[1:]
 
 
 def _space(layout: Layout, room: PlacedRoom) -> XmlSpace:
@@ -77,30 +95,31 @@ def _space(layout: Layout, room: PlacedRoom) -> XmlSpace:
     def pt(x_m: float, y_m: float) -> Point:
         return Point(round(x_m * UNITS_PER_METRE, 1), round((height - y_m) * UNITS_PER_METRE, 1))
 
+    # Clockwise on screen (y down) from the top-left corner: for a rectangle the top edge
+    # left→right, right edge top→bottom, bottom edge right→left, left edge bottom→top (as
+    # the real files do); an L's six edges likewise.
+    edges = _edges(room)
     # Door openings on each edge, as (lo, hi, portal) in metres along the edge.
-    openings: dict[str, list[tuple[float, float, Portal]]] = {"top": [], "right": [], "bottom": [], "left": []}
+    openings: dict[int, list[tuple[float, float, Portal]]] = {index: [] for index in range(len(edges))}
     for portal in layout.portals:
         if room.id not in (portal.a, portal.b):
             continue
-        edge, lo, hi = _portal_span_on_edge(room, portal)
-        if hi > lo:
-            openings[edge].append((lo, hi, portal))
+        found = _portal_edge(edges, portal)
+        if found is not None:
+            index, lo, hi = found
+            openings[index].append((lo, hi, portal))
 
-    # Clockwise on screen (y down) from the top-left corner: top edge left→right, right edge
-    # top→bottom, bottom edge right→left, left edge bottom→top (as the real files do).
-    # Each edge: (start, end) in metres and a function mapping a coordinate along it to a point.
-    edges = (
-        ("top", room.x, room.x2, lambda t: (t, room.y2)),
-        ("right", room.y2, room.y, lambda t: (room.x2, t)),
-        ("bottom", room.x2, room.x, lambda t: (t, room.y)),
-        ("left", room.y, room.y2, lambda t: (room.x, t)),
-    )
     segments: list[LineSegment] = []
     portals: list[BuildingPortal] = []
     polygon: list[Point] = []
-    for edge, start, end, at in edges:
+    for index, ((x1, y1), (x2, y2)) in enumerate(edges):
+        # a coordinate along the edge (x on a horizontal one, y on a vertical one) -> point
+        if x1 == x2:
+            start, end, at = y1, y2, (lambda t, x=x1: (x, t))
+        else:
+            start, end, at = x1, x2, (lambda t, y=y1: (t, y))
         forward = end >= start
-        ordered = sorted(openings[edge], key=lambda item: item[0], reverse=not forward)
+        ordered = sorted(openings[index], key=lambda item: item[0], reverse=not forward)
         cursor = start
         pieces: list[tuple[float, float, Portal | None]] = []
         for lo, hi, portal in ordered:
@@ -123,15 +142,16 @@ def _space(layout: Layout, room: PlacedRoom) -> XmlSpace:
                 portals.append(BuildingPortal(seg_id, kind, (portal.a, portal.b), segments[-1]))
     polygon.append(polygon[0])  # the real files close the polygon
     cx, cy = room.centre
+    x_lo, y_lo, x_hi, y_hi = room.bounds
     return XmlSpace(
         id=room.id,
         rtype=room.rtype,
         label=room.label,
         centroid=pt(cx, cy),
-        max_x=pt(room.x2, room.y2),
-        max_y=pt(room.x2, room.y),
-        min_x=pt(room.x, room.y),
-        min_y=pt(room.x, room.y2),
+        max_x=pt(x_hi, y_hi),
+        max_y=pt(x_hi, y_lo),
+        min_x=pt(x_lo, y_lo),
+        min_y=pt(x_lo, y_hi),
         polygon=tuple(polygon),
         segments=tuple(segments),
         portals=tuple(portals),

@@ -41,6 +41,31 @@ def room_sizes(building: Building) -> dict[str, tuple[float, float]]:
     return sizes
 
 
+NON_RECTANGULAR = 0.8
+"""A room whose polygon covers less than this share of its bounding box counts as
+non-rectangular (the importer's default L threshold, issue 14)."""
+
+
+def room_shapes(building: Building) -> dict[str, tuple[float, float]]:
+    """Report id -> (polygon area in m², polygon area / bounding-box area): each room's real
+    shape, an L-room's included, as opposed to its rectangularized size."""
+    s = building.metres_per_unit
+    ids = room_ids(building)
+    return {ids[space.id]: (space.area * s * s, space.rectangularization_ratio ** 2) for space in building.spaces}
+
+
+def shape_deviation(original: dict[str, tuple[float, float]], generated: dict[str, tuple[float, float]]) -> dict:
+    """How the rooms' real shapes compare: mean |area change| per matched room, and how many
+    rooms are non-rectangular (fill below NON_RECTANGULAR) in each plan."""
+    matched = [room for room in original if room in generated and original[room][0] > 0]
+    changes = [abs(generated[room][0] / original[room][0] - 1) for room in matched]
+    return {
+        "room_area_change_mean": sum(changes) / len(changes) if changes else 0.0,
+        "non_rectangular_original": sum(1 for area, fill in original.values() if fill < NON_RECTANGULAR),
+        "non_rectangular_generated": sum(1 for area, fill in generated.values() if fill < NON_RECTANGULAR),
+    }
+
+
 @dataclass(frozen=True, slots=True)
 class SizeDeviation:
     """Relative deviation of generated room sides from the original targets."""

@@ -14,7 +14,7 @@ import numpy as np
 from layoutdsl.importer.building import Building
 from layoutdsl.evaluate.explore import ExploreSettings, ExplorationResult, explore
 from layoutdsl.evaluate.grid import coarsen, inflate, nearest_cell, room_cells
-from layoutdsl.evaluate.metrics import PlanAreas, plan_areas, room_sizes
+from layoutdsl.evaluate.metrics import PlanAreas, plan_areas, room_shapes, room_sizes
 from layoutdsl.evaluate.difference import building_centres
 from layoutdsl.evaluate.paths import DistanceGrid, shortest_path
 from layoutdsl.evaluate.portals import MapCheck, realise_portal_graph
@@ -79,6 +79,8 @@ class PlanMeasures:
     """Whether the rasterized map joins exactly the rooms the portals join (and what was opened)."""
     centres: dict[str, tuple[float, float]] = field(default_factory=dict)
     """Room centres under report ids, for the arrangement difference (evaluate.difference)."""
+    shapes: dict[str, tuple[float, float]] = field(default_factory=dict)
+    """Room -> (polygon area m², polygon / bounding-box area): the rooms' real shapes."""
 
 
 def _anchor(room: str, index: int, rooms, traversable: np.ndarray, resolution: float) -> RoomAnchor | None:
@@ -165,4 +167,5 @@ def measure_plan(building: Building, options: EvaluateOptions = EvaluateOptions(
         occupied_preview=occupied,
         map_check=map_check,
         centres=building_centres(building),
+        shapes=room_shapes(building),
     )

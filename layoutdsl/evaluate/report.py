@@ -17,7 +17,7 @@ import numpy as np
 from layoutdsl.emit.atomic import write_files_atomic
 from layoutdsl.layout.difference import difference
 from layoutdsl.importer.building import Building
-from layoutdsl.evaluate.metrics import size_deviation
+from layoutdsl.evaluate.metrics import shape_deviation, size_deviation
 from layoutdsl.evaluate.plan import EvaluateOptions, PlanMeasures, measure_plan
 from layoutdsl.evaluate.topology import compare_topology
 
@@ -132,6 +132,7 @@ def compare_plans(original: PlanMeasures, generated: list[PlanMeasures], files: 
             "room_size_max": sizes.max,
             "room_size_worst_room": sizes.worst_room,
             "rooms_not_compared": list(sizes.unmatched),
+            "room_shapes": shape_deviation(original.shapes, m.shapes),
             "paths": {
                 _pair(a, b): _rel(m.path_lengths.get((a, b)), v) for (a, b), v in original.path_lengths.items()
             },
@@ -301,6 +302,14 @@ def render_markdown(report: dict) -> str:
             f"{f' ({worst})' if (worst := d['room_size_worst_room']) and d['room_size_max'] else ''} |"
         )
     out += ["", "Room size deviation: |generated side − original target| / target, per side, each room in its best orientation; targets are the rectangularized sizes (§5.3.1)."]
+    out += ["", "| plan | non-rectangular rooms | room area change, mean |", "|---|---|---|"]
+    for g in gens:
+        shapes = g["deviation"]["room_shapes"]
+        out.append(f"| {g['name']} | {shapes['non_rectangular_generated']} (original "
+                   f"{shapes['non_rectangular_original']}) | {_abs_pct(shapes['room_area_change_mean'])} |")
+    out += ["", "Real shapes (issue 14): a room is non-rectangular when its polygon covers less than 0.8 of "
+            "its bounding box (an L-room does); the area change is |generated polygon area / original − 1| "
+            "per room."]
     out += ["", "## Path lengths between entrances (m)", ""]
     if report["path_pairs"]:
         head = "| pair | original | generated mean ± std | Δ mean | " + " | ".join(g["name"] for g in gens) + " |"

@@ -23,8 +23,9 @@ import re
 from dataclasses import dataclass
 from pathlib import PurePath
 
-from layoutdsl.syntax.ast import Adjacency, Boundary, Hint, Room, Settings, Spec
+from layoutdsl.syntax.ast import Adjacency, Arm, Boundary, Hint, Room, Settings, Spec
 from layoutdsl.importer.building import Building, Space, polygon_area
+from layoutdsl.importer.lshape import LFit, fit_l
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.importer import codes
 from layoutdsl.diagnostics.source import Span
@@ -51,6 +52,12 @@ class ImportOptions:
     """α, the linear weight of the aspect-ratio margin."""
     beta: float = 0.2
     """β, the quadratic weight of the aspect-ratio margin (matters for elongated rooms)."""
+    l_threshold: float = 0.8
+    """A space whose polygon covers less than this share of its bounding box becomes an
+    L-shaped room (issue 14), fitted to the polygon, when the L fits it better than the box
+    by FIT_GAIN; 0 keeps every room rectangular."""
+    rectangular_only: bool = False
+    """Every room a rectangle, as the thesis imports them (§5.3.1)."""
     hints: bool = False
     """Write each room's place in the original plan as a hint for the first layout. Off by
     default: users import a plan for new buildings with its room graph (issue 11), and a
@@ -64,6 +71,7 @@ class ImportOptions:
             ("mindim", self.mindim, 0.0, math.inf),
             ("alpha", self.alpha, 0.0, math.inf),
             ("beta", self.beta, 0.0, math.inf),
+            ("l_threshold", self.l_threshold, 0.0, 1.0 + 1e-9),
         )
         for name, value, low, high in checks:
             if not (math.isfinite(value) and low <= value < high):
@@ -72,6 +80,11 @@ class ImportOptions:
         if self.mindim <= 0:
             # Without a positive floor a sparse polygon could give a zero or negative minimum.
             raise ValueError(f"mindim must be positive, got {self.mindim!r}")
+
+
+FIT_GAIN = 0.5
+"""An L replaces the rectangle only when it mismatches the polygon (area in one and not the
+other) by at most this share of what the bounding box mismatches."""
 
 
 def _floor(value: float) -> float:
@@ -169,6 +182,7 @@ def convert(
     frame = _plan_frame(building)
 
     rooms: list[Room] = []
+    arms: list[Arm] = []
     hints: list[Hint] = []
     for space in building.spaces:
         room_id = ids[space.id]
@@ -176,8 +190,24 @@ def convert(
         rtype = space.spec_type
         var_plus = options.var_corridor if rtype == "C" else options.var_plus
         var_minus = options.var_corridor if rtype == "C" else options.var_minus
-        sides = _unrounded_sides(space, ratio, var_plus, var_minus, options, frame.mpu)
         label = spec_label(space.label) or _DEFAULT_LABELS[rtype]
+        fit = _l_fit(space, options, frame.mpu)
+        if fit is None:
+            sides = _unrounded_sides(space, ratio, var_plus, var_minus, options, frame.mpu)
+        else:
+            # each arm is rectangularized on its own box (§5.3.1) with the same variances;
+            # the arms share the polygon's area in proportion to how much of it each covers,
+            # so the room keeps its area as a rectangularized one does
+            ratio, arm_ratio = _arm_ratios(space, fit)
+            arm_sides = _box_sides(_width(fit.second) * frame.mpu, _height(fit.second) * frame.mpu,
+                                   arm_ratio, var_plus, var_minus, options)
+            _lift_to_mindim(arm_sides, arm_ratio, var_plus, options, room_id, label, space, filename,
+                            diagnostics)
+            arm = _rounded_room(room_id, rtype, label, arm_sides, var_plus, var_minus, options, None)
+            arms.append(Arm(room_id, arm.min_w, arm.max_w, arm.target_w, arm.min_h, arm.max_h,
+                            arm.target_h, arm.min_ar, arm.max_ar))
+            sides = _box_sides(_width(fit.first) * frame.mpu, _height(fit.first) * frame.mpu, ratio,
+                               var_plus, var_minus, options)
         _lift_to_mindim(sides, ratio, var_plus, options, room_id, label, space, filename, diagnostics)
         widened = False
         if room_id in door_rooms and max(sides.max_w, sides.max_h) < door_side:
@@ -186,7 +216,7 @@ def convert(
         rooms.append(_rounded_room(room_id, rtype, label, sides, var_plus, var_minus, options,
                                    door_side if widened else None))
         if options.hints:
-            hints.append(_hint(space, room_id, frame))
+            hints.append(_hint(space, room_id, frame, fit.first if fit is not None else None))
 
     spec = Spec(
         name=name or spec_name(building),
@@ -194,8 +224,41 @@ def convert(
         boundary=frame.boundary,
         adjacencies=tuple(adjacencies),
         hints=tuple(hints),
+        arms=tuple(arms),
     )
     return spec, diagnostics
+
+
+def _l_fit(space: Space, options: ImportOptions, metres_per_unit: float) -> LFit | None:
+    """The L fitted to a space far from its bounding box (None: it stays a rectangle)."""
+    if options.rectangular_only or space.rectangularization_ratio ** 2 >= options.l_threshold:
+        return None
+    fit = fit_l([(p.x, p.y) for p in space.polygon])
+    if fit is None or fit.mismatch > FIT_GAIN * fit.box_mismatch:
+        return None
+    # an arm narrower than mindim is no part of the room a robot can enter: the polygon's
+    # sliver is better absorbed by the rectangle
+    mpu = metres_per_unit
+    if min(_width(fit.second), _height(fit.second)) * mpu < options.mindim:
+        return None
+    return fit
+
+
+def _arm_ratios(space: Space, fit: LFit) -> tuple[float, float]:
+    """sqrt(target area / box area) of each arm, the targets adding up to the polygon's area."""
+    covered = [fill * _width(box) * _height(box) for fill, box in ((fit.first_fill, fit.first),
+                                                                  (fit.second_fill, fit.second))]
+    scale = space.area / max(sum(covered), 1e-12)
+    return tuple(math.sqrt(c * scale / (_width(box) * _height(box)))
+                 for c, box in zip(covered, (fit.first, fit.second)))
+
+
+def _width(box) -> float:
+    return box[2] - box[0]
+
+
+def _height(box) -> float:
+    return box[3] - box[1]
 
 
 def _refuse_unusable(building: Building, name: str | None,
@@ -244,8 +307,12 @@ def _plan_frame(building: Building) -> _PlanFrame:
 def _unrounded_sides(space: Space, ratio: float, var_plus: float, var_minus: float,
                      options: ImportOptions, mpu: float) -> _Sides:
     """The space's target sides (§5.3.1) and their variance bounds (§5.3.2), in metres."""
-    bbox_w = space.bbox.width * mpu
-    bbox_h = space.bbox.height * mpu
+    return _box_sides(space.bbox.width * mpu, space.bbox.height * mpu, ratio, var_plus, var_minus, options)
+
+
+def _box_sides(bbox_w: float, bbox_h: float, ratio: float, var_plus: float, var_minus: float,
+               options: ImportOptions) -> _Sides:
+    """A box's target sides (§5.3.1) and their variance bounds (§5.3.2), in metres."""
     return _Sides(
         min_w=max(options.mindim, bbox_w * (ratio - var_minus)),
         max_w=bbox_w * (ratio + var_plus),
@@ -294,17 +361,20 @@ def _rounded_room(room_id: str, rtype: str, label: str, sides: _Sides, var_plus:
     )
 
 
-def _hint(space: Space, room_id: str, frame: _PlanFrame) -> Hint:
-    """The space's original place, in the boundary's frame: origin bottom-left, y up."""
+def _hint(space: Space, room_id: str, frame: _PlanFrame, box=None) -> Hint:
+    """The space's original place, in the boundary's frame: origin bottom-left, y up; for an
+    L-room the place of its first arm, `box` (x0, y0, x1, y1 in file units)."""
     mpu = frame.mpu
-    x = _floor((space.bbox.min_x - frame.min_x) * mpu)
-    y = _floor((frame.max_y - space.bbox.max_y) * mpu)
+    if box is None:
+        box = (space.bbox.min_x, space.bbox.min_y, space.bbox.max_x, space.bbox.max_y)
+    x = _floor((box[0] - frame.min_x) * mpu)
+    y = _floor((frame.max_y - box[3]) * mpu)
     return Hint(
         room=room_id,
         x=x,
         y=y,
-        w=_fit(x, _floor(space.bbox.width * mpu), frame.boundary.w),
-        h=_fit(y, _floor(space.bbox.height * mpu), frame.boundary.h),
+        w=_fit(x, _floor(_width(box) * mpu), frame.boundary.w),
+        h=_fit(y, _floor(_height(box) * mpu), frame.boundary.h),
     )
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
-from layoutdsl.syntax.ast import Spec
+from layoutdsl.syntax.ast import Spec, arm_id
 
 Rect = tuple[float, float, float, float]
 """(x, y, w, h): bottom-left corner and size, metres, boundary frame."""
@@ -22,13 +22,39 @@ OPPOSITE_SIDE = {"left": "right", "right": "left", "below": "above", "above": "b
 """The side b is on when a is on `side` of it."""
 
 
+WELD = 1e-6
+"""Metres within which an arm's edge is moved onto its box's edge line (the verifier's
+tolerance): the solver joins the two only to its tolerance, and an L whose edges miss
+each other by a nanometre would have a sliver of outline between its arms."""
+
+
+def _welded_arm(box: Rect, arm: Rect) -> Rect:
+    """The arm with each edge within WELD of one of the box's edge lines moved onto it."""
+    bx, by, bw, bh = box
+    ax, ay, aw, ah = arm
+    lines_x, lines_y = (bx, round_layout_number(bx + bw)), (by, round_layout_number(by + bh))
+
+    def weld(value: float, lines: tuple[float, float]) -> float:
+        return next((line for line in lines if abs(line - value) <= WELD), value)
+
+    x1, x2 = weld(ax, lines_x), weld(round_layout_number(ax + aw), lines_x)
+    y1, y2 = weld(ay, lines_y), weld(round_layout_number(ay + ah), lines_y)
+    return (x1, y1, round_layout_number(x2 - x1), round_layout_number(y2 - y1))
+
+
 def layout_from_rects(spec: Spec, rects: Mapping[str, Rect], info: SolveInfo | None = None) -> Layout:
-    """A Layout from plain rectangles: rounded rooms, portals centred on their shared walls."""
+    """A Layout from plain rectangles: rounded rooms, portals centred on their shared walls.
+
+    An L-shaped room's second rectangle is `rects[arm_id(room.id)]`."""
     assert spec.boundary is not None
     placed = {}
+    armed = {arm.room for arm in spec.arms}
     for room in spec.rooms:
         x, y, w, h = (round_layout_number(float(v)) for v in rects[room.id])
-        placed[room.id] = PlacedRoom(room.id, room.label, room.rtype, x, y, w, h)
+        arm = None
+        if room.id in armed:
+            arm = _welded_arm((x, y, w, h), tuple(round_layout_number(float(v)) for v in rects[arm_id(room.id)]))
+        placed[room.id] = PlacedRoom(room.id, room.label, room.rtype, x, y, w, h, arm)
     portals = []
     for adj in spec.adjacencies:
         try:

@@ -18,6 +18,12 @@ Rules (the thesis, §5.5.1, with the adjacency rule corrected as the scouting no
 - positions and connection points covered (5.10, 5.11), onB rooms touch the boundary (5.12);
 - each cluster admits one offset that keeps every member within the margin (5.13);
 - portals: exactly one per adjacency, `width` = the door, centred on the shared wall.
+
+L-shaped rooms (an `arms` line): the room is placed with its arm, each of its two
+rectangles within its own bounds; the two are flush along a full edge at a corner of the
+shared side (their union is an L, with no wall inside); every rule above that concerns the
+room's place holds for the union: inside, apart from the others, onB, covering points. An
+adjacency is met when either rectangle faces the other room across one wall.
 """
 
 from __future__ import annotations
@@ -39,7 +45,9 @@ class Violation:
 
     rule: str
     """'missing', 'extra', 'not-finite', 'type', 'inside', 'size', 'aspect-ratio', 'overlap',
-    'obstacle', 'adjacency', 'position', 'connection', 'on-boundary', 'cluster', 'portal'."""
+    'obstacle', 'adjacency', 'position', 'connection', 'on-boundary', 'cluster', 'portal',
+    'shape' (an L-room placed without its arm, or the other way round), 'join' (the arms of an
+    L do not form an L)."""
     rooms: tuple[str, ...]
     message: str
     span: Span | None = None
@@ -71,7 +79,13 @@ def _check_room_set(spec: Spec, layout: Layout, tol: float):
         if room.id in seen:
             yield Violation("extra", (room.id,), f"room `{room.id}` is placed twice")
         seen.add(room.id)
-        numbers = (room.x, room.y, room.w, room.h)
+        numbers = (room.x, room.y, room.w, room.h, *(room.arm or ()))
+        if (spec.arm(room.id) is not None) != (room.arm is not None):
+            shape = "an L (it has an arm)" if spec.arm(room.id) else "a rectangle"
+            yield Violation("shape", (room.id,), f"room `{room.id}` is {shape} in the spec, not in the layout",
+                            wanted[room.id].span)
+        elif room.arm is not None and len(room.arm) != 4:
+            yield Violation("shape", (room.id,), f"room `{room.id}`'s arm is not one rectangle (x, y, w, h)")
         if not all(math.isfinite(v) for v in numbers):
             yield Violation("not-finite", (room.id,), f"room `{room.id}` has a non-finite coordinate")
         spec_room = wanted[room.id]
@@ -116,44 +130,38 @@ def _fits_orientation(
     return room.min_ar * short_side <= long_side + tol and long_side <= room.max_ar * short_side + tol
 
 
+def _parts(room: PlacedRoom) -> list[PlacedRoom]:
+    """A room's rectangles, each as a one-rectangle PlacedRoom: itself, or an L's two arms."""
+    if room.arm is None:
+        return [room]
+    x, y, w, h = room.arm
+    first = PlacedRoom(room.id, room.label, room.rtype, room.x, room.y, room.w, room.h)
+    return [first, PlacedRoom(room.id, room.label, room.rtype, x, y, w, h)]
+
+
 def _check_rooms(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
     width, height = spec.boundary.w, spec.boundary.h
     for room in spec.rooms:
         p = placed[room.id]
-        if p.x < -tol or p.y < -tol or p.x2 > width + tol or p.y2 > height + tol:
-            yield Violation(
-                "inside",
-                (room.id,),
-                f"room `{room.id}` ({_rect(p)}) leaves the {width:g} x {height:g} boundary",
-                room.span,
-            )
-        # The thesis' orientation o decides which side gets the larger bounds; o = 0 gives
-        # the larger minimum/maximum to w, o = 1 to h. Either orientation may be chosen.
-        fits = _fits_orientation(p.w, p.h, room, tol) or _fits_orientation(p.h, p.w, room, tol)
-        if not fits:
-            sizes_ok = _fits_orientation(p.w, p.h, room, tol, aspect=False) or _fits_orientation(
-                p.h, p.w, room, tol, aspect=False
-            )
-            if sizes_ok:
-                ratio = max(p.w, p.h) / max(min(p.w, p.h), 1e-12)
+        parts = _parts(p)
+        for part in parts:
+            if part.x < -tol or part.y < -tol or part.x2 > width + tol or part.y2 > height + tol:
                 yield Violation(
-                    "aspect-ratio",
+                    "inside",
                     (room.id,),
-                    f"room `{room.id}` has aspect ratio {ratio:.6g}, outside "
-                    f"[{room.min_ar:g}, {room.max_ar:g}]",
+                    f"room `{room.id}` ({_rect(part)}) leaves the {width:g} x {height:g} boundary",
                     room.span,
                 )
-            else:
-                yield Violation(
-                    "size",
-                    (room.id,),
-                    f"room `{room.id}` is {p.w:.6g} x {p.h:.6g}, outside its size bounds "
-                    f"w [{room.min_w:g}, {room.max_w:g}], h [{room.min_h:g}, {room.max_h:g}] "
-                    "in either orientation",
-                    room.span,
-                )
-        if room.on_boundary and not (
-            p.x <= tol or p.y <= tol or p.x2 >= width - tol or p.y2 >= height - tol
+        arm = spec.arm(room.id)
+        bounds = [room] if arm is None else [room, arm.as_room(room)]
+        for part, bound in zip(parts, bounds):
+            yield from _check_size(room.id, part, bound, tol)
+        if len(parts) == 2:
+            yield from _check_join(room, *parts, tol)
+            yield from _check_turn(room, arm, *parts, tol)
+        if room.on_boundary and not any(
+            part.x <= tol or part.y <= tol or part.x2 >= width - tol or part.y2 >= height - tol
+            for part in parts
         ):
             yield Violation(
                 "on-boundary",
@@ -163,6 +171,85 @@ def _check_rooms(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
             )
 
 
+def _check_size(room_id: str, p: PlacedRoom, room, tol: float):
+    """One rectangle of a room against its bounds (the room line's, or its arm's)."""
+    what = f"room `{room_id}`" if room.id == room_id else f"the arm of room `{room_id}`"
+    # The thesis' orientation o decides which side gets the larger bounds; o = 0 gives
+    # the larger minimum/maximum to w, o = 1 to h. Either orientation may be chosen.
+    fits = _fits_orientation(p.w, p.h, room, tol) or _fits_orientation(p.h, p.w, room, tol)
+    if fits:
+        return
+    sizes_ok = _fits_orientation(p.w, p.h, room, tol, aspect=False) or _fits_orientation(
+        p.h, p.w, room, tol, aspect=False
+    )
+    if sizes_ok:
+        ratio = max(p.w, p.h) / max(min(p.w, p.h), 1e-12)
+        yield Violation(
+            "aspect-ratio",
+            (room_id,),
+            f"{what} has aspect ratio {ratio:.6g}, outside [{room.min_ar:g}, {room.max_ar:g}]",
+            room.span,
+        )
+    else:
+        yield Violation(
+            "size",
+            (room_id,),
+            f"{what} is {p.w:.6g} x {p.h:.6g}, outside its size bounds "
+            f"w [{room.min_w:g}, {room.max_w:g}], h [{room.min_h:g}, {room.max_h:g}] "
+            "in either orientation",
+            room.span,
+        )
+
+
+def _check_join(room, a: PlacedRoom, b: PlacedRoom, tol: float):
+    """The two arms of an L touch along a full edge of one of them, at a corner: flush on
+    one axis, overlapping on the other, and aligned at one end of that overlap."""
+
+    def close(u: float, v: float) -> bool:
+        return abs(u - v) <= tol
+
+    side_by_side = close(a.x2, b.x) or close(b.x2, a.x)
+    stacked = close(a.y2, b.y) or close(b.y2, a.y)
+    if side_by_side and not stacked:
+        overlap = min(a.y2, b.y2) - max(a.y, b.y)
+        aligned = close(a.y, b.y) or close(a.y2, b.y2)
+    elif stacked and not side_by_side:
+        overlap = min(a.x2, b.x2) - max(a.x, b.x)
+        aligned = close(a.x, b.x) or close(a.x2, b.x2)
+    else:
+        overlap, aligned = 0.0, False
+    if overlap <= tol or not aligned:
+        yield Violation(
+            "join",
+            (room.id,),
+            f"the arms of room `{room.id}` ({_rect(a)}; {_rect(b)}) do not form an L: they must "
+            "touch along a full edge, flush at a corner",
+            room.span,
+        )
+
+
+def _check_turn(room, arm, a: PlacedRoom, b: PlacedRoom, tol: float):
+    """The L keeps the shape its lines give: when both lines' bounds decide which side is
+    long, the arm runs across the first rectangle if one line is wide and the other tall,
+    along it otherwise."""
+    room_wide, arm_wide = room.target_w - room.target_h, arm.target_w - arm.target_h
+    if room_wide == 0 or arm_wide == 0:
+        return
+    # the longest short side is shorter than the shortest long side
+    decided = all(min(r.max_w, r.max_h) < max(r.min_w, r.min_h) for r in (room, arm))
+    if not decided:
+        return  # a rectangle whose bounds allow a square may lie either way
+    crosses = (room_wide > 0) != (arm_wide > 0)
+    if ((a.w > a.h) != (b.w > b.h)) != crosses:
+        yield Violation(
+            "join",
+            (room.id,),
+            f"the arm of room `{room.id}` runs {'along' if crosses else 'across'} its first rectangle; "
+            f"its lines say {'across' if crosses else 'along'}",
+            arm.span or room.span,
+        )
+
+
 def _separation(ax: float, aw: float, bx: float, bw: float) -> float:
     """Signed distance between two intervals (negative when they overlap)."""
     return max(bx - (ax + aw), ax - (bx + bw))
@@ -170,17 +257,22 @@ def _separation(ax: float, aw: float, bx: float, bw: float) -> float:
 
 def _check_non_overlap(spec: Spec, layout: Layout, tol: float):
     wall = spec.settings.walldim
-    rooms = sorted(layout.rooms, key=lambda r: r.x)
-    # Sweep along x: only rooms whose x-ranges come within a wall thickness can clash.
-    for i, a in enumerate(rooms):
-        for b in rooms[i + 1 :]:
+    parts = sorted((part for room in layout.rooms for part in _parts(room)), key=lambda r: (r.x, r.id))
+    reported: set[tuple[str, str]] = set()
+    # Sweep along x: only rectangles whose x-ranges come within a wall thickness can clash.
+    # The two arms of one L are checked by _check_join instead.
+    for i, a in enumerate(parts):
+        for b in parts[i + 1 :]:
             if b.x >= a.x2 + wall - tol:
                 break
+            if a.id == b.id:
+                continue
             gap_x = _separation(a.x, a.w, b.x, b.w)
             gap_y = _separation(a.y, a.h, b.y, b.h)
             separation = max(gap_x, gap_y)
-            if separation < wall - tol:
-                first, second = sorted((a.id, b.id))
+            first, second = sorted((a.id, b.id))
+            if separation < wall - tol and (first, second) not in reported:
+                reported.add((first, second))
                 how = "overlap" if separation < 0 else f"are only {separation:.6g} m apart"
                 yield Violation(
                     "overlap",
@@ -191,16 +283,18 @@ def _check_non_overlap(spec: Spec, layout: Layout, tol: float):
         return
     for obstacle in spec.boundary.obstacles:
         for room in layout.rooms:
-            gap_x = _separation(room.x, room.w, obstacle.x, obstacle.w)
-            gap_y = _separation(room.y, room.h, obstacle.y, obstacle.h)
-            if max(gap_x, gap_y) < wall - tol:
-                yield Violation(
-                    "obstacle",
-                    (room.id,),
-                    f"room `{room.id}` comes within {max(gap_x, gap_y):.6g} m of obstacle "
-                    f"`{obstacle.id}` (wall thickness {wall:g})",
-                    obstacle.span,
-                )
+            for part in _parts(room):
+                gap_x = _separation(part.x, part.w, obstacle.x, obstacle.w)
+                gap_y = _separation(part.y, part.h, obstacle.y, obstacle.h)
+                if max(gap_x, gap_y) < wall - tol:
+                    yield Violation(
+                        "obstacle",
+                        (room.id,),
+                        f"room `{room.id}` comes within {max(gap_x, gap_y):.6g} m of obstacle "
+                        f"`{obstacle.id}` (wall thickness {wall:g})",
+                        obstacle.span,
+                    )
+                    break
 
 
 def _check_adjacencies(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
@@ -208,8 +302,12 @@ def _check_adjacencies(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
     for adjacency in spec.adjacencies:
         a, b = placed[adjacency.a], placed[adjacency.b]
         needed = adjacency.door / spec.settings.door_utilization
-        best = _facing(a, b)
-        if best is None:
+        # an L-room's adjacency is met by either arm: judge the best pair of rectangles
+        facings = [f for pa in _parts(a) for pb in _parts(b) if (f := _facing(pa, pb)) is not None]
+        met = [f for f in facings if f[0] <= wall + tol and f[1] >= needed - tol]
+        if met:
+            continue
+        if not facings:
             yield Violation(
                 "adjacency",
                 (a.id, b.id),
@@ -217,7 +315,7 @@ def _check_adjacencies(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
                 adjacency.span,
             )
             continue
-        gap, shared = best
+        gap, shared = min(facings, key=lambda f: (f[0] > wall + tol, -f[1]))
         if gap > wall + tol:
             yield Violation(
                 "adjacency",
@@ -226,7 +324,7 @@ def _check_adjacencies(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
                 f"exactly one wall ({wall:g} m) apart",
                 adjacency.span,
             )
-        elif shared < needed - tol:
+        else:
             yield Violation(
                 "adjacency",
                 (a.id, b.id),
@@ -252,7 +350,7 @@ def _facing(a: PlacedRoom, b: PlacedRoom) -> tuple[float, float] | None:
 
 
 def _covers(room: PlacedRoom, x: float, y: float, tol: float) -> bool:
-    return room.x - tol <= x <= room.x2 + tol and room.y - tol <= y <= room.y2 + tol
+    return any(p.x - tol <= x <= p.x2 + tol and p.y - tol <= y <= p.y2 + tol for p in _parts(room))
 
 
 def _check_points(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
@@ -285,17 +383,21 @@ def _check_clusters(spec: Spec, placed: dict[str, PlacedRoom], tol: float):
     margin = spec.settings.cluster_margin
     for cluster in spec.clusters:
         # (5.13): x_i - margin <= xf + cx <= x_i + w_i + margin for every member, so cx must
-        # lie in the intersection of the members' intervals (likewise cy).
+        # lie in the intersection of the members' intervals (likewise cy). An L-room's
+        # interval is its union's extent.
         lo_x = lo_y = -math.inf
         hi_x = hi_y = math.inf
         for member in cluster.members:
             room = placed.get(member.room)
             if room is None:
                 continue
-            lo_x = max(lo_x, room.x - margin - member.x)
-            hi_x = min(hi_x, room.x2 + margin - member.x)
-            lo_y = max(lo_y, room.y - margin - member.y)
-            hi_y = min(hi_y, room.y2 + margin - member.y)
+            parts = _parts(room)
+            x1, y1 = min(p.x for p in parts), min(p.y for p in parts)
+            x2, y2 = max(p.x2 for p in parts), max(p.y2 for p in parts)
+            lo_x = max(lo_x, x1 - margin - member.x)
+            hi_x = min(hi_x, x2 + margin - member.x)
+            lo_y = max(lo_y, y1 - margin - member.y)
+            hi_y = min(hi_y, y2 + margin - member.y)
         if lo_x > hi_x + tol or lo_y > hi_y + tol:
             yield Violation(
                 "cluster",
@@ -366,4 +468,8 @@ def _check_portals(spec: Spec, layout: Layout, placed: dict[str, PlacedRoom], to
 
 
 def _rect(room: PlacedRoom) -> str:
-    return f"x {room.x:.6g}, y {room.y:.6g}, w {room.w:.6g}, h {room.h:.6g}"
+    text = f"x {room.x:.6g}, y {room.y:.6g}, w {room.w:.6g}, h {room.h:.6g}"
+    if room.arm is not None:
+        x, y, w, h = room.arm
+        text += f"; arm x {x:.6g}, y {y:.6g}, w {w:.6g}, h {h:.6g}"
+    return text

@@ -43,7 +43,7 @@ from collections.abc import Mapping
 
 import pyomo.environ as pyo
 
-from layoutdsl.model.equations import UNITS, fix_relations
+from layoutdsl.model.equations import UNITS, fix_relations, join_l_arms
 from layoutdsl.model.formulation import (
     BOUNDARY_SIDES,
     OPPOSITE_SIDE,
@@ -78,12 +78,18 @@ def build_model(
     *,
     fixed_relations: Mapping[tuple[str, str], str] | None = None,
     formulation: Formulation = Formulation(),
+    joins: Mapping[tuple[str, str], str] | None = None,
+    crossing: Mapping[tuple[str, str], bool] | None = None,
 ) -> pyo.ConcreteModel:
     """The MIQP of the thesis, §5.5.1, for a checked spec (no solving).
 
     `fixed_relations` maps a pair of room or obstacle ids (a, b) to the side of b on which a
     lies ('left', 'right', 'below', 'above'); those pairs' non-overlap binaries are fixed, so
     a construction that decided the relative positions leaves SCIP an easy model.
+
+    `joins` maps (room box, arm box) pairs of L-shaped rooms to their join option
+    (`equations.join_l_arms`); the spec is then the one of their boxes
+    (compile.lshape.boxes_spec), each arm a room of its own.
     """
     data = model_data(spec, formulation)
     m = pyo.ConcreteModel(name=spec.name)
@@ -91,6 +97,8 @@ def build_model(
     for unit in UNITS:
         unit(m, data)
     fix_relations(m, fixed_relations or {})
+    if joins:
+        join_l_arms(m, joins, crossing)
     return m
 
 

@@ -247,6 +247,56 @@ def fix_relations(m: pyo.ConcreteModel, fixed_relations: Mapping[tuple[str, str]
             b.side[key[0], key[1], s].fix(1 if s == rel else 0)
 
 
+JOIN_SIDES = SIDES
+"""A join's side: where the room's box lies relative to its arm, as in (5.8)'s ω."""
+
+
+def join_l_arms(m: pyo.ConcreteModel, joins: Mapping[tuple[str, str], str],
+                crossing: Mapping[tuple[str, str], bool] | None = None) -> None:
+    """L-shaped rooms (issue 14): each (room box, arm box) pair of `joins` is one room.
+
+    The model is built on the spec's boxes (an L-room's arm as a room of its own); this
+    replaces the pair's (5.8) disjunction, which would keep the two a wall apart, by the
+    join its option names (`side:end`, compile.lshape.JOIN_OPTIONS): the box flush on
+    `side` of its arm, no wall between, their edges flush at the low or high `end` of the
+    side they share, so the union is an L. `crossing[pair]` says whether the arm runs across
+    its box (orientations o opposite) or along it (o equal): the L turns as a whole. The pair
+    leaves the symmetry chains too (an arm swapped with a look-alike room would break its L).
+    """
+    b = m.eq5_8_non_overlap
+    m.join_l_arms = pyo.Block(doc="L-rooms: each room's box joined flush to its arm at a corner")
+    m.join_l_arms.pairs = pyo.Set(dimen=2, ordered=True, initialize=list(joins))
+    flush = []
+    for (box, arm), option in joins.items():
+        side, end = option.split(":")
+        if side not in JOIN_SIDES or end not in ("lo", "hi"):
+            raise ValueError(f"unknown join {option!r} for ({box}, {arm})")
+        for pair in ((box, arm), (arm, box)):
+            if pair in b.pairs:
+                for s in SIDES:
+                    b.separate[pair[0], pair[1], s].deactivate()
+                b.one_side[pair].deactivate()
+        if side in ("left", "right"):
+            first, second = (box, arm) if side == "left" else (arm, box)
+            flush.append((m.x[first] + m.w[first], m.x[second]))
+            flush.append((m.y[box], m.y[arm]) if end == "lo" else (m.y[box] + m.h[box], m.y[arm] + m.h[arm]))
+        else:
+            first, second = (box, arm) if side == "below" else (arm, box)
+            flush.append((m.y[first] + m.h[first], m.y[second]))
+            flush.append((m.x[box], m.x[arm]) if end == "lo" else (m.x[box] + m.w[box], m.x[arm] + m.w[arm]))
+    m.join_l_arms.flush = pyo.Constraint(range(len(flush)), rule=lambda _, i: flush[i][0] == flush[i][1])
+    turns = [(box, arm, crosses) for (box, arm), crosses in (crossing or {}).items() if (box, arm) in joins]
+    m.join_l_arms.turn = pyo.Constraint(
+        range(len(turns)),
+        rule=lambda _, i: m.o[turns[i][1]] == (1 - m.o[turns[i][0]] if turns[i][2] else m.o[turns[i][0]]),
+    )
+    joined = {room for pair in joins for room in pair}
+    for a, c in list(m.symmetry.chain):
+        if a in joined or c in joined:
+            m.symmetry.order[a, c].deactivate()
+    m.interchangeable_groups = [g for g in m.interchangeable_groups if not joined & set(g)]
+
+
 def eq5_9_adjacency(m: pyo.ConcreteModel, d: ModelData) -> None:
     """(5.9) adjacency, corrected: a shared wall of door / door_utilization, walldim apart."""
     bounds, wall, big_m = d.bounds, d.wall, d.big_m

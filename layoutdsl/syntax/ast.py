@@ -61,6 +61,59 @@ class Room:
 
 
 @dataclass(frozen=True, slots=True)
+class Arm:
+    """The second rectangle of an L-shaped room (one line of the `arms` section).
+
+    The room's line in `rooms` gives its first rectangle; this one is joined to it flush
+    along one full edge, at a corner of the shared side, so the union is an L with no wall
+    inside (the thesis' first item of future work, §7: rooms made of several rectangles).
+    The bounds read like the room line's columns and apply to this rectangle alone; as
+    written, wide or tall, the two lines also say whether the arm runs across the first
+    rectangle or along it (`crosses`).
+    """
+
+    room: str
+    min_w: float
+    max_w: float
+    target_w: float
+    min_h: float
+    max_h: float
+    target_h: float
+    min_ar: float
+    max_ar: float
+    span: Span | None = field(default=None, compare=False)
+    spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+
+    def crosses(self, room: Room) -> bool | None:
+        """Does the L's arm run across its room's first rectangle (True: one line is wide,
+        the other tall) or along it (False)? None when a line's targets are square, and so
+        say nothing. The L keeps this shape however it is turned."""
+        room_wide, arm_wide = room.target_w - room.target_h, self.target_w - self.target_h
+        if room_wide == 0 or arm_wide == 0:
+            return None
+        return (room_wide > 0) != (arm_wide > 0)
+
+    def as_room(self, room: Room) -> Room:
+        """This rectangle as a Room of its own (id `arm_id(room.id)`), with the room's type,
+        label and weights: how the checks and the construction size it."""
+        return Room(
+            arm_id(room.id), self.min_w, self.max_w, self.target_w, self.min_h, self.max_h,
+            self.target_h, self.min_ar, self.max_ar, room.rtype, room.label, False,
+            room.rho_cover, room.rho_error, span=self.span, spans=self.spans,
+        )  # fmt: skip
+
+
+ARM_SUFFIX = "/arm"
+"""What `arm_id` appends to a room id: the name of an L-room's second rectangle wherever
+rectangles are keyed by id (the construction's geometry, messages about the arm's sizes)."""
+
+
+def arm_id(room_id: str) -> str:
+    """The key of an L-room's second rectangle."""
+    return room_id + ARM_SUFFIX
+
+
+@dataclass(frozen=True, slots=True)
 class Obstacle:
     """A fixed rectangle inside the boundary that no room may overlap."""
 
@@ -216,12 +269,21 @@ class Spec:
     hints: tuple[Hint, ...] = ()
     settings: Settings = Settings()
     path: str = field(default="<spec>", compare=False)
+    arms: tuple[Arm, ...] = ()
+    """The second rectangles of the L-shaped rooms (at most one per room)."""
 
     def room(self, room_id: str) -> Room | None:
         """The room with this id, or None."""
         for room in self.rooms:
             if room.id == room_id:
                 return room
+        return None
+
+    def arm(self, room_id: str) -> Arm | None:
+        """The second rectangle of an L-shaped room, or None for a rectangular one."""
+        for arm in self.arms:
+            if arm.room == room_id:
+                return arm
         return None
 
     @property
@@ -241,4 +303,5 @@ class Spec:
             connections=tuple(c for c in self.connections if c.room in keep),
             clusters=tuple(c for c in self.clusters if all(member.room in keep for member in c.members)),
             hints=tuple(h for h in self.hints if h.room in keep),
+            arms=tuple(a for a in self.arms if a.room in keep),
         )

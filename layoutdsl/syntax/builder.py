@@ -25,6 +25,7 @@ from layoutdsl.syntax.ast import (
     ROOM_TYPES,
     SETTING_KEYS,
     Adjacency,
+    Arm,
     Boundary,
     Cluster,
     ClusterMember,
@@ -268,6 +269,16 @@ class LineBuilder(Transformer):
             spans=MappingProxyType(spans),
         )  # fmt: skip
 
+    def arm_line(self, children: list[Any]) -> Arm:
+        room = self._word(children[0])
+        nums: list[_Num] = children[1:9]
+        names = ("min_w", "max_w", "target_w", "min_h", "max_h", "target_h", "min_ar", "max_ar")
+        spans = {"room": room.span, **{name: num.span for name, num in zip(names, nums)}}
+        return Arm(
+            room.value, *(n.value for n in nums), span=self._line_span(room.span, nums[-1].span),
+            spans=MappingProxyType(spans),
+        )  # fmt: skip
+
     def boundary_size(self, children: list[_Num]) -> tuple[str, _Num, _Num]:
         return ("size", children[0], children[1])
 
@@ -438,6 +449,7 @@ class _Sections:
     """The built entry lines, sorted by what they are, before assembly into a Spec."""
 
     rooms: list[Room] = field(default_factory=list)
+    arms: list[Arm] = field(default_factory=list)
     obstacles: list[Obstacle] = field(default_factory=list)
     size: tuple[_Num, _Num] | None = None
     size_span: Span | None = None
@@ -449,7 +461,7 @@ class _Sections:
     setting_lines: list[tuple[_Word, list[_Word], int]] = field(default_factory=list)
 
 
-_NODE_LISTS = {Room: "rooms", Obstacle: "obstacles", Adjacency: "adjacencies", Position: "positions",
+_NODE_LISTS = {Room: "rooms", Arm: "arms", Obstacle: "obstacles", Adjacency: "adjacencies", Position: "positions",
                Connection: "connections", Hint: "hints"}  # fmt: skip
 
 
@@ -557,5 +569,6 @@ def build_spec(
         hints=tuple(found.hints),
         settings=settings,
         path=path,
+        arms=tuple(found.arms),
     )
     return spec, diagnostics

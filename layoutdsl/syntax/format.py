@@ -3,7 +3,8 @@
 The canonical form is the thesis layout (the thesis, §5.4): the sections `rooms`, `boundary`,
 `adjacencies`, `positions`, `connections`, `clusters` in that order, single spaces between
 values, one blank line between sections. Extensions appear only when they carry
-information: per-room weights other than 1, a `hints` section when there are hints, and a
+information: per-room weights other than 1, an `arms` section (right after `rooms`) when
+there are L-shaped rooms, a `hints` section when there are hints, and a
 `settings` section with the keys the spec set (or that differ from their defaults). Empty
 optional sections are left out, so a spec without extensions is a plain thesis file.
 
@@ -116,6 +117,13 @@ def format_lines(spec: Spec, header_lines: Mapping[str, int] | None = None) -> l
             parts.append(f"error={n(room.rho_error)}")
         rooms.append((" ".join(parts), _line(room)))
     sections.append(rooms)
+    if spec.arms:
+        sections.append([header("arms")] + [
+            (" ".join([arm.room, *(n(v) for v in (arm.min_w, arm.max_w, arm.target_w, arm.min_h,
+                                                  arm.max_h, arm.target_h, arm.min_ar, arm.max_ar))]),
+             _line(arm))
+            for arm in spec.arms
+        ])  # fmt: skip
 
     boundary = spec.boundary
     if boundary is not None:

@@ -31,6 +31,7 @@ from layoutdsl.diagnostics.source import Source, Span
 
 SECTION_RULES = {
     "rooms": "room_line",
+    "arms": "arm_line",
     "boundary": "boundary_line",
     "adjacencies": "adjacency_line",
     "positions": "position_line",
@@ -53,6 +54,7 @@ _ROOM_FIELDS = (
 )  # fmt: skip
 LINE_SHAPES: dict[str, tuple[tuple[str, str], ...]] = {
     "room_line": _ROOM_FIELDS,
+    "arm_line": _ROOM_FIELDS[:9],
     "boundary_size": (("w", "number"), ("h", "number")),
     "obstacle": (("id", "id"), ("x", "number"), ("y", "number"), ("w", "number"), ("h", "number")),
     "adjacency_line": (("id1", "id"), ("id2", "id"), ("mina", "number"), ("atype", "id")),
@@ -68,6 +70,7 @@ LINE_SHAPES: dict[str, tuple[tuple[str, str], ...]] = {
 
 LINE_SYNOPSIS = {
     "room_line": "id minw maxw targetw minh maxh targeth minar maxar rtype label [onB] [cover=W] [error=W]",
+    "arm_line": "id minw maxw targetw minh maxh targeth minar maxar",
     "boundary_size": "w h",
     "obstacle": "id x y w h",
     "adjacency_line": "id1 id2 mina atype",
@@ -231,12 +234,12 @@ def _build_syntax_errors() -> dict[str, dict[str, list[str]]]:
         table[code].setdefault(rule, []).extend(e for e in examples if e)
 
     full = {name: " ".join("R0" if k != "number" else "1" for _, k in s) for name, s in LINE_SHAPES.items()}
-    for rule in ("room_line", "adjacency_line", "position_line", "connection_line", "hint_line"):
+    for rule in ("room_line", "arm_line", "adjacency_line", "position_line", "connection_line", "hint_line"):
         missing, not_number, not_id = _shape_examples(LINE_SHAPES[rule])
         add(E_MISSING_VALUE, rule, missing)
         add(E_EXPECTED_NUMBER, rule, not_number)
         add(E_EXPECTED_ID, rule, not_id)
-    for rule in ("adjacency_line", "position_line", "connection_line", "hint_line"):
+    for rule in ("arm_line", "adjacency_line", "position_line", "connection_line", "hint_line"):
         add(E_EXTRA_VALUE, rule, [full[rule] + " extra", full[rule] + " 1", full[rule] + " w=1"])
     add(E_EXTRA_VALUE, "room_line", [full["room_line"] + " cover=1 extra", full["room_line"] + " cover=1 2"])
     add(E_EXPECTED_NUMBER, "room_line", ["R0 w=1"])
@@ -252,7 +255,7 @@ def _build_syntax_errors() -> dict[str, dict[str, list[str]]]:
     add(E_EXTRA_VALUE, "cluster_line", ["R0 1 1 1", "R0 1 1 x"])
     add(E_MISSING_VALUE, "setting_line", ["seed"])
     add(E_EXPECTED_ID, "setting_line", ["7 1"])
-    for rule in ("adjacency_line", "position_line", "connection_line", "hint_line", "setting_line"):
+    for rule in ("arm_line", "adjacency_line", "position_line", "connection_line", "hint_line", "setting_line"):
         add(E_EXPECTED_ID, rule, ["w=1"])
     add(E_EXPECTED_ID, "room_line", ["w=1"])
     return table

@@ -26,7 +26,7 @@ def test_spec_file_comes_from_a_verified_planted_layout(name: str) -> None:
     assert verify(spec, layout) == []
     assert check_spec(spec) == []
     assert path.read_text(encoding="utf-8") == header + "\n" + format_spec(spec)
-    rooms_area = sum(r.target_w * r.target_h for r in spec.rooms)
+    rooms_area = sum(r.target_w * r.target_h for r in (*spec.rooms, *spec.arms))
     assert 1.3 <= spec.boundary.w * spec.boundary.h / rooms_area <= 1.6
 
 

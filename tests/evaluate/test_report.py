@@ -105,3 +105,22 @@ def test_plans_of_the_same_file_name_from_different_folders_keep_distinct_names(
     assert distinct_names(files) == ["plan", "run1/plan-0", "run2/plan-0", "plan-1"]
     # the same file twice is the same plan: one name
     assert distinct_names([files[0], files[0]]) == ["plan", "plan"]
+
+
+def test_rooms_are_compared_by_their_real_shapes() -> None:
+    """An L-shaped room (area 75 of a 100 m² box) counts as non-rectangular, and its area
+    is its polygon's, not its box's (issue 14)."""
+    from dataclasses import replace
+
+    from layoutdsl.evaluate.metrics import room_shapes, shape_deviation
+    from layoutdsl.importer.building import Point
+
+    square = rect_space("A", "R", "OFFICE", 0, 0, 1000, 1000)
+    l_shape = replace(square, polygon=(Point(0, 0), Point(1000, 0), Point(1000, 500), Point(500, 500),
+                                       Point(500, 1000), Point(0, 1000)))
+    original, generated = room_shapes(building([l_shape])), room_shapes(building([square]))
+    (area, fill), = original.values()
+    assert (area, fill) == (75.0, pytest.approx(0.75))
+    deviation = shape_deviation(original, generated)
+    assert deviation["non_rectangular_original"] == 1 and deviation["non_rectangular_generated"] == 0
+    assert deviation["room_area_change_mean"] == pytest.approx(100 / 75 - 1)

@@ -26,7 +26,7 @@ def test_writes_a_spec_that_lints_clean_and_reports_on_stderr(tmp_path, capsys):
     assert main(["import", str(LAMUNIERE), "-o", str(out), "--keep-arrangement"]) == exitcodes.OK
     captured = capsys.readouterr()
     assert captured.out == ""
-    assert captured.err == f"imported 8 rooms and 7 adjacencies into `{out}`\n"
+    assert captured.err == f"imported 8 rooms (1 L-shaped) and 7 adjacencies into `{out}`\n"
     spec, diagnostics = _lint_file(out)
     assert [d for d in diagnostics if d.is_error] == []
     assert spec.name == "lamuniere" and len(spec.rooms) == 8 and len(spec.hints) == 8
@@ -110,7 +110,7 @@ def test_runs_as_a_program(tmp_path):
         timeout=60,
     )
     assert result.returncode == 0, result.stderr
-    assert "imported 17 rooms and 16 adjacencies" in result.stderr
+    assert "imported 17 rooms (2 L-shaped) and 16 adjacencies" in result.stderr
     assert out.read_text().count("\n") > 17
 
 

@@ -46,8 +46,10 @@ def test_figure_4_2_corridor_row_comes_out_with_the_default_corridor_variance():
 
 def test_non_rectangular_room_keeps_its_area_and_bbox_proportions():
     # An L: a 10 m x 10 m box missing a 5 m x 5 m corner; area 75 m², ratio sqrt(0.75).
+    # (imported as the thesis does, --rectangular-only; by default it is an L, see below)
     l_shape = [(0, 0), (1000, 0), (1000, 500), (500, 500), (500, 1000), (0, 1000), (0, 0)]
-    spec, _ = _import(plan_xml([PlanSpace("a", "R", "OFFICE", l_shape)], represented="90", real="90"))
+    spec, _ = _import(plan_xml([PlanSpace("a", "R", "OFFICE", l_shape)], represented="90", real="90"),
+                      ImportOptions(rectangular_only=True))
     (room,) = spec.rooms
     ratio = math.sqrt(0.75)
     assert room.target_w == pytest.approx(10 * ratio, abs=1e-3)
@@ -56,6 +58,26 @@ def test_non_rectangular_room_keeps_its_area_and_bbox_proportions():
     assert room.min_w == pytest.approx(10 * (ratio - 0.3), abs=1e-3)
     assert room.max_w == pytest.approx(10 * (ratio + 0.2), abs=1e-3)
     assert (room.min_ar, room.max_ar) == (1, pytest.approx(1 + 1.5 * 0.25, abs=1e-3))
+
+
+def test_a_room_far_from_its_box_becomes_an_l_of_its_polygon():
+    """The same L (area/box 0.75 < 0.8): two arms, 10 x 5 and 5 x 5, each its own box's
+    rectangularization (full boxes: target = box), with the thesis' variances."""
+    l_shape = [(0, 0), (1000, 0), (1000, 500), (500, 500), (500, 1000), (0, 1000), (0, 0)]
+    spec, _ = _import(plan_xml([PlanSpace("a", "R", "OFFICE", l_shape)], represented="90", real="90"))
+    (room,) = spec.rooms
+    arm = spec.arm(room.id)
+    assert arm is not None
+    assert sorted([room.target_w, room.target_h]) == pytest.approx([5, 10], abs=1e-3)
+    assert sorted([arm.target_w, arm.target_h]) == pytest.approx([5, 5], abs=1e-3)
+    assert room.target_w * room.target_h + arm.target_w * arm.target_h == pytest.approx(75, abs=0.02)
+    assert arm.min_w == pytest.approx(5 * (1 - 0.3), abs=1e-3) and arm.max_w == pytest.approx(5 * 1.2, abs=1e-3)
+    # a threshold below the polygon's fill keeps it a rectangle
+    (plain,) = _import(plan_xml([PlanSpace("a", "R", "OFFICE", l_shape)], represented="90", real="90"),
+                       ImportOptions(l_threshold=0.7))[0].rooms
+    assert _import(plan_xml([PlanSpace("a", "R", "OFFICE", l_shape)], represented="90", real="90"),
+                   ImportOptions(l_threshold=0.7))[0].arms == ()
+    assert plain.target_w == pytest.approx(10 * math.sqrt(0.75), abs=1e-3)
 
 
 def test_corridors_use_the_corridor_variance_on_both_sides():

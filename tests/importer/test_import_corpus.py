@@ -93,5 +93,5 @@ def test_real_plan_imports_lints_clean_and_keeps_its_portal_graph(plan: Path):
     assert [h.room for h in spec.hints] == [r.id for r in spec.rooms]
 
     # Rectangularization keeps each room's area (only the mindim repair adds a little).
-    target_area = sum(room.target_w * room.target_h for room in spec.rooms)
+    target_area = sum(room.target_w * room.target_h for room in (*spec.rooms, *spec.arms))
     assert target_area == pytest.approx(original_room_area(read_building(plan)[0]), rel=0.003)

@@ -150,3 +150,19 @@ def test_generated_specs_round_trip(spec: Spec) -> None:
     again, diagnostics = parse_source(Source("generated.lay", format_spec(spec)))
     assert [d.message for d in diagnostics] == []
     assert again == spec
+
+
+def test_arms_are_written_right_after_rooms() -> None:
+    """An L-room's arm line reads next to its room line, whatever order the file used."""
+    text = (
+        "boundary\n14 12\n\narms\nC0 1.5 2.2 1.8 6 9 8 1 20\n\n"
+        "rooms\nC0 11 14 12 1.5 2.2 1.8 1 20 C CORRIDOR\n"
+    )
+    spec, diagnostics = parse_source(Source("l.lay", text))
+    assert diagnostics == []
+    assert spec.arm("C0") is not None and spec.arm("C0").target_h == 8
+    assert format_spec(spec).split("\n\n")[:2] == [
+        "rooms\nC0 11 14 12 1.5 2.2 1.8 1 20 C CORRIDOR",
+        "arms\nC0 1.5 2.2 1.8 6 9 8 1 20",
+    ]
+    assert parse_source(Source("l.lay", format_spec(spec)))[0] == spec

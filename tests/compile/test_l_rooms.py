@@ -1,0 +1,151 @@
+"""specs/l_corridor.lay compiles, and its drawing and Stage bitmap show the L (issue 14).
+
+The checks read the written files (layout JSON, PNG, Stage world and bitmap, XML) and judge
+them with their own arithmetic: the corridor is two rectangles flush at a corner; the
+pixels along the line where its arms meet are corridor, not wall; just outside the L's
+inner corner is wall (an L, not its bounding box).
+"""
+
+from __future__ import annotations
+
+import re
+import xml.etree.ElementTree as ET
+from pathlib import Path
+
+import pytest
+from PIL import Image
+
+from layoutdsl.cli import main
+from layoutdsl.emit.png import ROOM_TINTS, WALL, drawing
+from layoutdsl.layout import Layout
+
+ROOT = Path(__file__).resolve().parents[2]
+SPEC = ROOT / "specs" / "l_corridor.lay"
+
+
+@pytest.fixture(scope="module")
+def out(tmp_path_factory) -> Path:
+    folder = tmp_path_factory.mktemp("l_corridor")
+    assert main(["compile", str(SPEC), "-o", str(folder), "-q", "--time-limit", "30"]) == 0
+    return folder
+
+
+def _corridor(out: Path):
+    layout = Layout.from_json((out / "l_corridor.layout.json").read_text())
+    corridor = layout.room("C0")
+    assert corridor.arm is not None
+    a = (corridor.x, corridor.y, corridor.x + corridor.w, corridor.y + corridor.h)
+    ax, ay, aw, ah = corridor.arm
+    b = (ax, ay, ax + aw, ay + ah)
+    return layout, a, b
+
+
+def _join(a, b):
+    """(the join segment's two ends, the L's inner corner, the outward diagonal there)."""
+    eps = 1e-6
+    if abs(a[2] - b[0]) < eps or abs(b[2] - a[0]) < eps:  # side by side: a vertical join line
+        x = a[2] if abs(a[2] - b[0]) < eps else a[0]
+        lo, hi = max(a[1], b[1]), min(a[3], b[3])
+        ends = ((x, lo), (x, hi))
+        # the inner corner is the end of the join that is not a corner of both boxes' span
+        inner_y = hi if hi < max(a[3], b[3]) else lo
+        short = a if (a[3] - a[1]) < (b[3] - b[1]) else b
+        out_x = 1 if short[0] >= x - eps else -1
+        out_y = 1 if inner_y == hi else -1
+        return ends, (x, inner_y), (out_x, out_y)
+    y = a[3] if abs(a[3] - b[1]) < eps else a[1]
+    lo, hi = max(a[0], b[0]), min(a[2], b[2])
+    ends = ((lo, y), (hi, y))
+    inner_x = hi if hi < max(a[2], b[2]) else lo
+    short = a if (a[2] - a[0]) < (b[2] - b[0]) else b
+    out_y = 1 if short[1] >= y - eps else -1
+    out_x = 1 if inner_x == hi else -1
+    return ends, (inner_x, y), (out_x, out_y)
+
+
+def test_the_corridor_is_an_l_of_two_flush_rectangles(out: Path) -> None:
+    layout, a, b = _corridor(out)
+    (p, q), corner, _ = _join(a, b)
+    length = abs(q[0] - p[0]) + abs(q[1] - p[1])
+    assert length >= min(a[2] - a[0], a[3] - a[1], b[2] - b[0], b[3] - b[1]) - 1e-6
+    # aligned at one end: the union is an L, six corners
+    assert len(layout.room("C0").polygon) == 6
+    bbox = (min(a[0], b[0]), min(a[1], b[1]), max(a[2], b[2]), max(a[3], b[3]))
+    union = (a[2] - a[0]) * (a[3] - a[1]) + (b[2] - b[0]) * (b[3] - b[1])
+    assert union < 0.95 * (bbox[2] - bbox[0]) * (bbox[3] - bbox[1]), "not far from its bounding box"
+
+
+def _samples(p, q, n=9):
+    return [(p[0] + (q[0] - p[0]) * (i + 1) / (n + 1), p[1] + (q[1] - p[1]) * (i + 1) / (n + 1)) for i in range(n)]
+
+
+def test_the_stage_bitmap_shows_the_l(out: Path) -> None:
+    layout, a, b = _corridor(out)
+    (p, q), corner, (dx, dy) = _join(a, b)
+    world = (out / "l_corridor.world").read_text()
+    block = world[world.index("\nfloorplan\n"):]  # the model, not the comment or the definition
+    size = [float(v) for v in re.search(r"size \[ ([\d.]+) ([\d.]+)", block).groups()]
+    pose = [float(v) for v in re.search(r"pose \[ ([-\d.]+) ([-\d.]+)", block).groups()]
+    image = Image.open(out / "l_corridor.world.png").convert("L")
+    cols, rows = image.size
+    x0, y_top = pose[0] - size[0] / 2, pose[1] + size[1] / 2
+
+    def pixel(x: float, y: float) -> int:
+        col = int((x - x0) / size[0] * cols)
+        row = int((y_top - y) / size[1] * rows)
+        return image.getpixel((col, row))
+
+    free = [pixel(x, y) for x, y in _samples(p, q)]
+    assert all(v > 128 for v in free), f"wall between the arms of the L: {free}"
+    for box in (a, b):
+        assert pixel((box[0] + box[2]) / 2, (box[1] + box[3]) / 2) > 128
+    half = layout.walldim / 2
+    assert pixel(corner[0] + dx * half, corner[1] + dy * half) < 128, "no wall at the L's inner corner"
+
+
+def test_the_png_shows_the_l(out: Path) -> None:
+    layout, a, b = _corridor(out)
+    (p, q), corner, (dx, dy) = _join(a, b)
+    plan = drawing(layout)
+    # the drawing's metre -> pixel map, read off the corridor's two painted rectangles
+    painted = [item for item in plan.items if getattr(item, "tag", "") == "room C0"]
+    assert len(painted) == 2
+    first = painted[0]
+    scale = (first.x1 - first.x0) / (a[2] - a[0])
+    image = Image.open(out / "l_corridor.png").convert("RGB")
+
+    def pixel(x: float, y: float) -> str:
+        px = first.x0 + (x - a[0]) * scale
+        py = first.y0 + (a[3] - y) * scale
+        return "#%02x%02x%02x" % image.getpixel((int(px), int(py)))
+
+    # away from the label, which is drawn over the larger arm's centre
+    along = [pixel(x, y) for x, y in _samples(p, q)]
+    assert along.count(ROOM_TINTS["C"]) >= 7, f"the arms' meeting line is not corridor: {along}"
+    half = layout.walldim / 2
+    assert pixel(corner[0] + dx * half, corner[1] + dy * half) == WALL
+
+
+def test_the_xml_space_has_six_corners(out: Path) -> None:
+    root = ET.parse(out / "l_corridor.xml").getroot()
+    for space in root.iter("space"):
+        if space.get("id") != "C0":
+            continue
+        points = [(float(p.get("x")), float(p.get("y"))) for p in space.find("bounding_polygon").iter("point")]
+        break
+    else:
+        pytest.fail("no space C0")
+    # door openings split edges: keep only the corners where the outline turns
+    ring = points[:-1]
+    corners = [pt for i, pt in enumerate(ring)
+               if not (ring[i - 1][0] == pt[0] == ring[(i + 1) % len(ring)][0]
+                       or ring[i - 1][1] == pt[1] == ring[(i + 1) % len(ring)][1])]
+    assert len(corners) == 6
+
+
+def test_the_same_seed_gives_the_same_l_layout(out: Path, tmp_path: Path) -> None:
+    assert main(["compile", str(SPEC), "-o", str(tmp_path), "-q", "--time-limit", "30"]) == 0
+    first = Layout.from_json((out / "l_corridor.layout.json").read_text())
+    again = Layout.from_json((tmp_path / "l_corridor.layout.json").read_text())
+    assert (first.rooms, first.portals) == (again.rooms, again.portals)
+    assert (out / "l_corridor.xml").read_bytes() == (tmp_path / "l_corridor.xml").read_bytes()
