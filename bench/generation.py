@@ -70,7 +70,8 @@ def _layout_row(spec, layout, area, original_fill, centres) -> dict:
     from layoutdsl.layout.difference import difference, layout_centres
     from layoutdsl.layout.verify import verify
 
-    rects = [(r.x, r.y, r.w, r.h) for r in layout.rooms]
+    # every rectangle of every room: an L-room's arm too
+    rects = [(p.x, p.y, p.w, p.h) for r in layout.rooms for p in r.parts]
     generated = sum(r.area for r in layout.rooms)
     return {
         "verified": not verify(spec, layout),
