@@ -603,9 +603,10 @@ def _move_subtrees(geometry: dict[str, Rect], placement: _Placement,
     graph = nx.Graph()
     graph.add_nodes_from(geometry)
     graph.add_edges_from((a, b) for a in neighbours for b in neighbours[a] if a < b)
+    # the total defect, kept up to date as trees move: each bridge compares against it
+    total = sum(_room_defects(geometry, placement, neighbours, walls).values())
     for u, v in sorted(nx.bridges(graph)):
-        index = {room_id: i for i, room_id in enumerate(placement.ids)}
-        shortfall = _contact_shortfall(placement.rects[index[u]:index[u] + 1], placement.rects[index[v]],
+        shortfall = _contact_shortfall(np.array([geometry[u]]), np.array(geometry[v]),
                                        placement.walldim, walls[frozenset((u, v))])[0]
         if shortfall <= 1e-6:
             continue
@@ -622,12 +623,12 @@ def _move_subtrees(geometry: dict[str, Rect], placement: _Placement,
         moved = _place_template(template, v, others, rest, neighbours, walls, _NO_DRAW)
         if moved is None:
             continue
-        before = sum(_room_defects(geometry, placement, neighbours, walls).values())
         trial = {room_id: moved.get(room_id, rect) for room_id, rect in geometry.items()}
         trial_placement = _placement_of(trial, placement)
-        if sum(_room_defects(trial, trial_placement, neighbours, walls).values()) < before - SUBTREE_GAIN:
+        trial_total = sum(_room_defects(trial, trial_placement, neighbours, walls).values())
+        if trial_total < total - SUBTREE_GAIN:
             geometry.update(trial)
-            placement = trial_placement
+            placement, total = trial_placement, trial_total
     return placement
 
 
