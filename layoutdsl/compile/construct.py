@@ -36,7 +36,7 @@ from dataclasses import dataclass, replace
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
 from layoutdsl.compile import lshape
-from layoutdsl.compile.generate import RoomSizes, cycle_blocks, generate_geometry
+from layoutdsl.compile.generate import RoomSizes, cycle_blocks, drawn_sides, generate_geometry
 from layoutdsl.compile.ladders import ladder_template
 from layoutdsl.syntax.ast import Room, Spec
 
@@ -941,26 +941,36 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
         if ladder is None or hard_violations(spec.restricted_to(frozenset(ladder), spec.name), ladder):
             return []
         return [ladder]
+    # blocks that share rooms are solved together; where that fails, one by one
+    todo = [(group, [b for b in blocks if b <= group]) for group in _joined_blocks(blocks)]
+    if any(len(group) == len(spec.rooms) for group, _ in todo):
+        todo = [(block, [block]) for block in blocks]
     budget_end = time.monotonic() + BLOCK_SHARE * max(0.0, deadline - time.monotonic())
     total = sum(len(b) for b in blocks)
     templates = []
     solved: dict[str, Rect] = {}
-    for block in blocks:
+    lengths = {room_id: long_side for room_id, (long_side, _) in drawn_sides(spec).items()}
+    while todo:
+        block, parts = todo.pop(0)
         left = budget_end - time.monotonic()
         # a block's first repair rounds take about a second: less than BLOCK_MIN_SECONDS
         # solves nothing (measured: every 5-room block of rockislandsecondfloor failed with
         # 0.4 s each and all solved with 1.3 s), so small budgets borrow from the rest
-        share = max(BLOCK_MIN_SECONDS, left * len(block) / total)
-        total -= len(block)
+        share = max(BLOCK_MIN_SECONDS, left * len(block) / max(total, 1))
         if deadline - time.monotonic() < 2 * share:
             break
         # a room two blocks share keeps the shape the first block gave it, so the second
         # can be laid over it (measured on school_hendersonhighschool: a hall solved in
         # two shapes left the gym of the second block 7.7 m from it)
         shared = {room_id: solved[room_id][2:] for room_id in block if room_id in solved}
-        rects = construct_start(_with_shapes(block_spec(spec, block), shared), seed=seed,
+        alone = _with_long_sides(block_spec(spec, block), lengths)
+        rects = construct_start(_with_shapes(alone, shared), seed=seed,
                                 use_hints=False, deadline=time.monotonic() + share)
         _debug(f"block of {len(block)} rooms: {'solved' if rects else 'not solved'}")
+        if rects is None and len(parts) > 1:
+            todo[:0] = [(part, [part]) for part in parts]
+            continue
+        total -= len(block)
         if rects is not None:
             # the generator places rooms; an L-room's arm is seeded again beside its box
             rects = lshape.rooms_only(spec, rects)
@@ -969,8 +979,56 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
     return templates
 
 
+JOINED_MAX_ROOMS = 24
+"""Largest set of joined blocks solved together: school_stjoseph_scatholichighschool's
+blocks would join into one of 54 rooms, as hard to solve as a whole plan."""
+
+
+def _joined_blocks(blocks: list[frozenset[str]]) -> list[frozenset[str]]:
+    """Blocks that share a room, joined into one, largest first.
+
+    Two blocks solved apart and laid over their shared room collide around it: measured on
+    school_hendersonhighschool, whose corridor C9 is in two blocks and its hall R35 in two,
+    no full geometry repaired. Solved together (the construction of the joined rooms,
+    which solves each block first and then places them), they fit around the shared room.
+    """
+    groups: list[set[str]] = []
+    for block in blocks:
+        touching = [g for g in groups if g & block]
+        merged = set(block).union(*touching)
+        if len(merged) > JOINED_MAX_ROOMS:
+            groups.append(set(block))
+            continue
+        groups = [g for g in groups if not g & block] + [merged]
+    return sorted((frozenset(g) for g in groups), key=lambda g: (-len(g), sorted(g)))
+
+
 PIN_SLACK = 1e-4
 """Metres a shared room's pinned sides may vary by (below generate.SHAPE_TOLERANCE)."""
+
+
+def _with_long_sides(spec: Spec, lengths: dict[str, float]) -> Spec:
+    """The spec with each corridor's long side at least its drawn length (within bounds).
+
+    A block solved alone packs its corridors tight against each other, leaving no side
+    free for the rooms that hang off them outside the block (measured on
+    school_hendersonhighschool: three 9-door corridors of one block, 30 rooms piled over
+    them). Drawn lengths give each corridor the perimeter its rooms need.
+    """
+    rooms = []
+    for room in spec.rooms:
+        if room.is_corridor and room.id in lengths:
+            long_is_w = room.target_w >= room.target_h
+            hi = room.max_w if long_is_w else room.max_h
+            # within the aspect ratio the short side's bounds allow
+            hi = min(hi, room.max_ar * (room.max_h if long_is_w else room.max_w))
+            want = min(hi, lengths[room.id])
+            if long_is_w and want > room.min_w:
+                room = replace(room, min_w=want, target_w=max(room.target_w, want))
+            elif not long_is_w and want > room.min_h:
+                room = replace(room, min_h=want, target_h=max(room.target_h, want))
+        rooms.append(room)
+    return replace(spec, rooms=tuple(rooms))
 
 
 def _with_shapes(spec: Spec, shapes: dict[str, tuple[float, float]]) -> Spec:

@@ -136,6 +136,43 @@ def _target_sides(spec: Spec, shrink: float) -> dict[str, tuple[float, float]]:
     return sides
 
 
+FRONTAGE_USE = 0.7
+"""Share of a corridor's perimeter its rooms can hang on: doors need their wall, and rooms at
+a corner or an end take more than their side."""
+
+
+def _corridors_lengthened(spec: Spec, sides: dict[str, tuple[float, float]],
+                          neighbours: dict[str, list[str]]) -> dict[str, tuple[float, float]]:
+    """Each corridor long enough (within its bounds) for the rooms that hang off it.
+
+    A corridor drawn at its target length can have less perimeter than its neighbours'
+    short sides add up to, and they then pile over each other around it.
+    """
+    lengthened = dict(sides)
+    for room in spec.rooms:
+        if not room.is_corridor or not neighbours[room.id]:
+            continue
+        long_side, short_side = sides[room.id]
+        frontage = sum(sides[n][1] for n in neighbours[room.id]) / FRONTAGE_USE
+        wanted = frontage / 2 - short_side
+        sizes = RoomSizes.of(room)
+        wanted = min(wanted, sizes.hi_long, sizes.max_ar * sizes.hi_short)
+        if wanted > long_side:
+            lengthened[room.id] = (wanted, short_side)
+    return lengthened
+
+
+def drawn_sides(spec: Spec, shrink: float | None = None) -> dict[str, tuple[float, float]]:
+    """(long, short) side each room is drawn with: targets shrunk to PACKING_DENSITY of
+    the boundary (or by `shrink`), corridors lengthened for their rooms."""
+    if shrink is None:
+        boundary = spec.boundary
+        assert boundary is not None
+        target_area = sum(room.target_w * room.target_h for room in spec.rooms)
+        shrink = min(MAX_SHRINK, (PACKING_DENSITY * boundary.w * boundary.h / max(target_area, 1e-9)) ** 0.5)
+    return _corridors_lengthened(spec, _target_sides(spec, shrink), _neighbours(spec))
+
+
 def _neighbours(spec: Spec) -> dict[str, list[str]]:
     neighbours: dict[str, list[str]] = {room.id: [] for room in spec.rooms}
     for adj in spec.adjacencies:
@@ -313,11 +350,8 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
     walls: dict[frozenset[str], float] = {
         frozenset((adj.a, adj.b)): adj.door / door_factor for adj in spec.adjacencies
     }
-    if shrink is None:
-        target_area = sum(room.target_w * room.target_h for room in spec.rooms)
-        shrink = min(MAX_SHRINK, (PACKING_DENSITY * width * height / max(target_area, 1e-9)) ** 0.5)
-    sides = _target_sides(spec, shrink)
     neighbours = _neighbours(spec)
+    sides = drawn_sides(spec, shrink)
     corridor = {room.id: room.is_corridor for room in spec.rooms}
     on_boundary = {room.id: room.on_boundary for room in spec.rooms}
     degree = {room_id: len(ns) for room_id, ns in neighbours.items()}
