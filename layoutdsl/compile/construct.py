@@ -33,11 +33,12 @@ import random
 import sys
 import time
 from dataclasses import dataclass, replace
+from collections.abc import Mapping
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
 from layoutdsl.compile import lshape
 from layoutdsl.compile.generate import RoomSizes, cycle_blocks, drawn_sides, generate_geometry
-from layoutdsl.compile.ladders import ladder_template
+from layoutdsl.compile.ladders import find_ladder, ladder_template
 from layoutdsl.syntax.ast import Room, Spec
 
 
@@ -829,6 +830,7 @@ def construct_start(
     deadline: float | None = None,
     randomize: bool = False,
     use_hints: bool = True,
+    hanging: Mapping[str, float] | None = None,
 ) -> dict[str, Rect] | None:
     """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
 
@@ -837,6 +839,8 @@ def construct_start(
     to the target sizes (when the spec has hints and `use_hints`), then geometries grown
     from the room graph (layoutdsl.compile.generate), then spring embeddings. `randomize` (hint-based
     variants) perturbs the hints from `seed`; the graph geometries are always drawn from it.
+    `hanging` (a part of a larger spec, such as a cycle block) is the area of the rooms that
+    hang off each room outside the part: the part leaves them space.
     """
     if spec.boundary is None or not spec.rooms:
         return None
@@ -845,7 +849,7 @@ def construct_start(
     problem = _Problem.of(spec)
     rng = random.Random(seed)
     has_hints = use_hints and hint_geometry(spec) is not None
-    templates = None if has_hints else _TemplateSets(spec, seed, deadline)
+    templates = None if has_hints else _TemplateSets(spec, seed, deadline, hanging or {})
     candidates = list(_seed_geometries(spec, rng, randomize, use_hints, templates))
     for index, (kind, make_geometry) in enumerate(candidates):
         left = deadline - time.monotonic()
@@ -924,7 +928,8 @@ def block_spec(spec: Spec, block: frozenset[str]) -> Spec:
     return spec.restricted_to(block, f"{spec.name}-block")
 
 
-def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Rect]]:
+def block_templates(spec: Spec, seed: int, deadline: float,
+                    hanging: Mapping[str, float] | None = None) -> list[dict[str, Rect]]:
     """Each cycle block of the room graph solved on its own: rooms placed so that every
     adjacency among them is a door (a verified layout of the block alone).
 
@@ -937,7 +942,7 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
     blocks = [b for b in cycle_blocks(spec) if len(b) < len(spec.rooms)]
     if not blocks:
         # a block itself: its ladder of corridors, if it has one, drawn outright
-        ladder = ladder_template(spec, random.Random(seed))
+        ladder = ladder_template(spec, random.Random(seed), hanging)
         if ladder is None or hard_violations(spec.restricted_to(frozenset(ladder), spec.name), ladder):
             return []
         return [ladder]
@@ -963,9 +968,14 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
         # can be laid over it (measured on school_hendersonhighschool: a hall solved in
         # two shapes left the gym of the second block 7.7 m from it)
         shared = {room_id: solved[room_id][2:] for room_id in block if room_id in solved}
-        alone = _with_long_sides(block_spec(spec, block), lengths)
+        alone = block_spec(spec, block)
+        # a ladder's rungs must span one common gap: only its rails are lengthened
+        ladder = find_ladder(alone)
+        rungs = set(ladder[2]) if ladder else set()
+        alone = _with_long_sides(alone, {r: v for r, v in lengths.items() if r not in rungs})
         rects = construct_start(_with_shapes(alone, shared), seed=seed,
-                                use_hints=False, deadline=time.monotonic() + share)
+                                use_hints=False, deadline=time.monotonic() + share,
+                                hanging=_hanging_areas(spec, block, hanging or {}))
         _debug(f"block of {len(block)} rooms: {'solved' if rects else 'not solved'}")
         if rects is None and len(parts) > 1:
             todo[:0] = [(part, [part]) for part in parts]
@@ -982,6 +992,28 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
 JOINED_MAX_ROOMS = 24
 """Largest set of joined blocks solved together: school_stjoseph_scatholichighschool's
 blocks would join into one of 54 rooms, as hard to solve as a whole plan."""
+
+
+def _hanging_areas(spec: Spec, part: frozenset[str], outer: Mapping[str, float]) -> dict[str, float]:
+    """Room of `part` -> drawn area of the rooms outside it that hang off that room.
+
+    A cycle block meets the rest of the graph only at its cut rooms, so each connected
+    piece of the rest hangs off exactly one room of the block. `outer`: the same for the
+    spec itself, when it is a part of a larger one.
+    """
+    import networkx as nx
+
+    sides = drawn_sides(spec)
+    graph = nx.Graph()
+    graph.add_nodes_from(room.id for room in spec.rooms)
+    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
+    hanging = {room_id: outer.get(room_id, 0.0) for room_id in part}
+    for piece in nx.connected_components(graph.subgraph(set(graph) - part)):
+        roots = {n for r in piece for n in graph[r] if n in part}
+        area = sum(sides[r][0] * sides[r][1] + outer.get(r, 0.0) for r in piece)
+        for root in roots:
+            hanging[root] += area / len(roots)
+    return hanging
 
 
 def _joined_blocks(blocks: list[frozenset[str]]) -> list[frozenset[str]]:
@@ -1058,10 +1090,10 @@ class _TemplateSets:
     the time, later ones with at most TEMPLATE_RESOLVE_FACTOR times what the first took.
     """
 
-    def __init__(self, spec: Spec, seed: int, deadline: float):
-        self.spec, self.seed, self.deadline = spec, seed, deadline
+    def __init__(self, spec: Spec, seed: int, deadline: float, hanging: Mapping[str, float] | None = None):
+        self.spec, self.seed, self.deadline, self.hanging = spec, seed, deadline, hanging or {}
         began = time.monotonic()
-        self.sets = [block_templates(spec, seed, deadline)]
+        self.sets = [block_templates(spec, seed, deadline, hanging)]
         self.first_seconds = time.monotonic() - began
 
     def get(self, index: int) -> list[dict[str, Rect]]:
@@ -1069,7 +1101,7 @@ class _TemplateSets:
             budget = BLOCK_MIN_SECONDS + TEMPLATE_RESOLVE_FACTOR * self.first_seconds
             deadline = min(self.deadline, time.monotonic() + budget / BLOCK_SHARE)
             self.sets.append(block_templates(self.spec, self.seed + len(self.sets) * TEMPLATE_SEED_STEP,
-                                             deadline))
+                                             deadline, self.hanging))
         return self.sets[index]
 
 

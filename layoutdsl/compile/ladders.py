@@ -18,6 +18,7 @@ The construction uses it only when it satisfies every hard constraint among its 
 from __future__ import annotations
 
 import random
+from collections.abc import Mapping
 from itertools import combinations
 
 import networkx as nx
@@ -77,10 +78,16 @@ def _rung_width(sizes: RoomSizes, gap: float, corridor: bool, wall: float) -> fl
     return None
 
 
-def ladder_template(spec: Spec, rng: random.Random) -> dict[str, Rect] | None:
+def ladder_template(spec: Spec, rng: random.Random,
+                    hanging: Mapping[str, float] | None = None) -> dict[str, Rect] | None:
     """The ladder of the spec drawn as rectangles (its rooms only), or None when the rungs
     allow no common gap or the rails cannot hold them. The caller checks the result against
-    the hard constraints among its rooms before using it."""
+    the hard constraints among its rooms before using it.
+
+    `hanging`: room -> area of the rooms outside the spec that hang off it. Rooms hanging off
+    a rung can only lie between the rails, beside it: the spacing next to a rung gets their
+    area over the gap (measured on office_OfficePlan: ten rooms hang off one rung).
+    """
     found = find_ladder(spec)
     if found is None or spec.boundary is None:
         return None
@@ -108,12 +115,22 @@ def ladder_template(spec: Spec, rng: random.Random) -> dict[str, Rect] | None:
     order = list(rungs)
     rng.shuffle(order)
     depth = sorted(RoomSizes.of(room).target_short for room in spec.rooms)[len(spec.rooms) // 2]
-    spacings = [walldim + rng.uniform(0, SPACING_ROOMS) * depth for _ in order[1:]]
+    hanging = hanging or {}
+    # each rung's hanging rooms split over the spacings beside it
+    beside = [0.0] * max(0, len(order) - 1)
+    for k, r in enumerate(order):
+        slots = [j for j in (k - 1, k) if 0 <= j < len(beside)]
+        for j in slots:
+            beside[j] += hanging.get(r, 0.0) / len(slots) / max(gap, walldim)
+    spacings = [walldim + extra + rng.uniform(0, SPACING_ROOMS) * depth for extra in beside]
     rails = {}
     for rail in (rail_a, rail_b):
         span = sum(widths.values()) + sum(spacings)
         if span > sizes[rail].hi_long:
-            spacings = [walldim] * len(spacings)
+            # the hanging rooms' share as far as the rail allows, nothing drawn beyond
+            spare = sizes[rail].hi_long - sum(widths.values()) - walldim * len(spacings)
+            scale = min(1.0, max(0.0, spare) / sum(beside)) if sum(beside) > 0 else 0.0
+            spacings = [walldim + extra * scale for extra in beside]
             span = sum(widths.values()) + sum(spacings)
         if span > sizes[rail].hi_long:
             return None
