@@ -345,3 +345,34 @@ def test_a_corridor_is_drawn_long_enough_for_the_rooms_on_it():
     assert c.min_h == rooms[0].min_h
     # rooms that are not corridors keep their bounds
     assert lengthened.rooms[1:] == rooms[1:]
+
+
+def test_rooms_hanging_off_a_rung_get_the_space_beside_it():
+    from _specs import ladder_spec
+
+    from layoutdsl.compile.construct import _hanging_areas, block_spec, hard_violations
+    from layoutdsl.compile.generate import cycle_blocks, drawn_sides
+    from layoutdsl.compile.ladders import ladder_template
+
+    spec = ladder_spec()
+    (block,) = cycle_blocks(spec)
+    ring = block_spec(spec, block)
+    hanging = _hanging_areas(spec, block, {})
+    # the office on each rung is all that hangs off the ladder: its drawn area, on its rung
+    sides = drawn_sides(spec)
+    assert hanging == pytest.approx({**{r: 0.0 for r in block},
+                                     **{f"K{i}": sides[f"R{i}"][0] * sides[f"R{i}"][1] for i in range(3)}})
+    for seed in range(4):
+        rects = ladder_template(ring, random.Random(seed), {"K1": 40.0})
+        assert rects is not None
+        assert hard_violations(ring.restricted_to(frozenset(rects), "ladder"), rects) == []
+        along = 0 if rects["A"][2] > rects["A"][3] else 1  # the rails' axis
+        gap = min(max(rects[k][2:]) for k in ("K0", "K1", "K2"))
+        # the free strips beside K1 (to the next rung either way) hold 40 m² over the gap
+        rungs = sorted(("K0", "K1", "K2"), key=lambda k: rects[k][along])
+        i = rungs.index("K1")
+        free = 0.0
+        for left, right in zip(rungs, rungs[1:]):
+            if "K1" in (left, right):
+                free += rects[right][along] - rects[left][along] - rects[left][2 + along]
+        assert free * gap >= 40.0 - 1e-6, (seed, i, free, gap)
