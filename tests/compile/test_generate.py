@@ -345,6 +345,9 @@ def test_a_corridor_is_drawn_long_enough_for_the_rooms_on_it():
     assert c.min_h == rooms[0].min_h
     # rooms that are not corridors keep their bounds
     assert lengthened.rooms[1:] == rooms[1:]
+    # in a boundary the rooms' targets nearly fill, the corridor keeps its drawn length
+    dense = replace(spec, boundary=Boundary(17.0, 17.0))
+    assert drawn_sides(dense)["C"][0] < 10.0
 
 
 def test_rooms_hanging_off_a_rung_get_the_space_beside_it():
