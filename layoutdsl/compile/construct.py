@@ -856,6 +856,11 @@ def construct_start(
         if left <= 0.05:
             return None
         geometry = _cover_points(spec, make_geometry())
+        # making it may have taken a while (solving the cycle blocks): the repair's share
+        # is of the time left now, so the construction keeps its deadline
+        left = deadline - time.monotonic()
+        if left <= 0.05:
+            return None
         candidate_problem = problem
         if spec.arms:
             # each seed geometry says which box of an L-room meets which neighbour
