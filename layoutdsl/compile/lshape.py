@@ -9,8 +9,9 @@ several rectangles). A join's option names where the room's box lies relative to
 and which end they align at, e.g. `below:lo` (the box is below the arm, left edges flush).
 
 Which box realises an adjacency of the L is read off each seed geometry, like every other
-relation: the box nearer the neighbour. The generator sizes and places an L-room by its
-first box; `seed_arms` then puts the arm beside it where it overlaps least.
+relation: the box nearer to meeting the neighbour. The generator draws an L-room's arm as a
+room of its own hung off the box (`seeds_spec`), so it keeps space for it; `seed_arms` then
+joins the arm to the box where it overlaps and misses least, nearest where it was drawn.
 """
 
 from __future__ import annotations
