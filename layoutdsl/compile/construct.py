@@ -848,9 +848,11 @@ def construct_start(
         deadline = time.monotonic() + DEFAULT_SECONDS
     problem = _Problem.of(spec)
     rng = random.Random(seed)
-    has_hints = use_hints and hint_geometry(spec) is not None
-    templates = None if has_hints else _TemplateSets(spec, seed, deadline, hanging or {})
-    candidates = list(_seed_geometries(spec, rng, randomize, use_hints, templates))
+    # an L-room's arm is drawn as a room of its own (lshape.seeds_spec)
+    drawn = lshape.seeds_spec(spec)
+    has_hints = use_hints and hint_geometry(drawn) is not None
+    templates = None if has_hints else _TemplateSets(drawn, seed, deadline, hanging or {})
+    candidates = list(_seed_geometries(drawn, rng, randomize, use_hints, templates))
     for index, (kind, make_geometry) in enumerate(candidates):
         left = deadline - time.monotonic()
         if left <= 0.05:
@@ -864,7 +866,7 @@ def construct_start(
         candidate_problem = problem
         if spec.arms:
             # each seed geometry says which box of an L-room meets which neighbour
-            geometry = lshape.seed_arms(spec, geometry, rng)
+            geometry = lshape.seed_arms(spec, geometry, rng, hints=kind == "hints")
             boxes, joins = lshape.boxes_spec(spec, geometry)
             candidate_problem = _Problem.of(boxes, joins=joins, checked=spec,
                                             crossing=lshape.crossings(spec))
