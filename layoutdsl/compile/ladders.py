@@ -114,11 +114,22 @@ def ladder_template(spec: Spec, rng: random.Random,
         return None
     order = list(rungs)
     rng.shuffle(order)
-    depth = sorted(RoomSizes.of(room).target_short for room in spec.rooms)[len(spec.rooms) // 2]
     hanging = hanging or {}
-    # each rung's hanging rooms split over the spacings beside it
+    # the rung with the most rooms hanging off it goes first, the rails flush with its
+    # outer side: its rooms take the open end of the ladder, as a hall at the end of two
+    # corridors does (office_OfficePlan: six rooms off the hall C8)
+    outside = max(order, key=lambda r: hanging.get(r, 0.0)) if hanging else None
+    if outside is not None and hanging.get(outside, 0.0) > 0:
+        order.remove(outside)
+        order.insert(0, outside)
+    else:
+        outside = None
+    depth = sorted(RoomSizes.of(room).target_short for room in spec.rooms)[len(spec.rooms) // 2]
+    # each other rung's hanging rooms split over the spacings beside it
     beside = [0.0] * max(0, len(order) - 1)
     for k, r in enumerate(order):
+        if r == outside:
+            continue
         slots = [j for j in (k - 1, k) if 0 <= j < len(beside)]
         for j in slots:
             beside[j] += hanging.get(r, 0.0) / len(slots) / max(gap, walldim)
@@ -139,13 +150,16 @@ def ladder_template(spec: Spec, rng: random.Random,
     span = sum(widths.values()) + sum(spacings)
     rects: dict[str, Rect] = {}
     thick_a = min(sizes[rail_a].hi_short, max(sizes[rail_a].lo_short, rails[rail_a][1]))
-    rects[rail_a] = (-rng.uniform(0, rails[rail_a][0] - span), 0.0, rails[rail_a][0], thick_a)
+    def rail_start(rail: str) -> float:
+        return 0.0 if outside is not None else -rng.uniform(0, rails[rail][0] - span)
+
+    rects[rail_a] = (rail_start(rail_a), 0.0, rails[rail_a][0], thick_a)
     x = 0.0
     for k, r in enumerate(order):
         rects[r] = (x, thick_a + walldim, widths[r], gap)
         x += widths[r] + (spacings[k] if k < len(spacings) else 0.0)
     thick_b = min(sizes[rail_b].hi_short, max(sizes[rail_b].lo_short, rails[rail_b][1]))
-    rects[rail_b] = (-rng.uniform(0, rails[rail_b][0] - span), thick_a + 2 * walldim + gap,
+    rects[rail_b] = (rail_start(rail_b), thick_a + 2 * walldim + gap,
                      rails[rail_b][0], thick_b)
     x0 = min(x for x, _, _, _ in rects.values())
     y0 = min(y for _, y, _, _ in rects.values())
