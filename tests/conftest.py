@@ -5,6 +5,14 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
+
+# Property tests draw the same examples on every run (CI included): a failure is then the
+# code's, reproducible from the test name alone, not a new draw's. A hypothesis run that
+# explores afresh: pytest --hypothesis-profile=explore
+settings.register_profile("deterministic", derandomize=True, database=None)
+settings.register_profile("explore", derandomize=False)
+settings.load_profile("deterministic")
 
 
 def pytest_addoption(parser) -> None:

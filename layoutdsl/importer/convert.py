@@ -333,7 +333,8 @@ def _rounded_room(room_id: str, rtype: str, label: str, sides: _Sides, var_plus:
     # decimals is kept as given) nor a target outside its rounded bounds.
     min_w = max(_floor(sides.min_w), options.mindim)
     min_h = max(_floor(sides.min_h), options.mindim)
-    max_w, max_h = _ceil(sides.max_w), _ceil(sides.max_h)
+    # ...nor a maximum below its minimum (a mindim a hair above a millimetre, rounded)
+    max_w, max_h = max(_ceil(sides.max_w), min_w), max(_ceil(sides.max_h), min_h)
     target_w = min(max(_round(sides.target_w), min_w), max_w)
     target_h = min(max(_round(sides.target_h), min_h), max_h)
     # ar* from the rounded targets, so the written target is itself a feasible room.
