@@ -41,7 +41,7 @@ import networkx as nx
 import numpy as np
 
 from layoutdsl.layout.geometry import Rect
-from layoutdsl.syntax.ast import Room, Spec
+from layoutdsl.syntax.ast import ARM_SUFFIX, Room, Spec, arm_id
 
 
 @dataclass(frozen=True, slots=True)
@@ -141,11 +141,13 @@ FRONTAGE_USE = 0.7
 a corner or an end take more than their side."""
 
 
-LENGTHEN_MAX_DENSITY = 0.6
+LENGTHEN_MAX_DENSITY = 0.5
 """Target room area per m² of boundary above which corridors keep their drawn length: a
 dense plan has no room to give them. Measured (construct_start, seeds 0-2, 45 s): on
 school_hendersonhighschool (0.44) lengthened corridors construct 3 of 3 in 6-10 s, 1 of 3
-without; on office_floorplanLOWER (0.90) lengthened took 4.7-36 s, unlengthened 0.6-5.3 s."""
+without; on office_floorplanLOWER (0.87) lengthened took 4.7-36 s, unlengthened 0.6-5.3 s;
+on school_scuolasconosciuta (0.57, L-rooms) lengthened found nothing in 30 s (seeds 0-1),
+unlengthened 0.3 s."""
 
 
 def _corridors_lengthened(spec: Spec, sides: dict[str, tuple[float, float]],
@@ -158,6 +160,11 @@ def _corridors_lengthened(spec: Spec, sides: dict[str, tuple[float, float]],
     lengthened = dict(sides)
     for room in spec.rooms:
         if not room.is_corridor or not neighbours[room.id]:
+            continue
+        if room.id.endswith(ARM_SUFFIX) or arm_id(room.id) in neighbours:
+            # an L-room's box and arm are drawn as two rooms (compile.lshape.seeds_spec)
+            # joined later at their target shape: measured on school_hendersonhighschool,
+            # whose hub corridor is an L, lengthened they left no seed geometry repairable
             continue
         long_side, short_side = sides[room.id]
         frontage = sum(sides[n][1] for n in neighbours[room.id]) / FRONTAGE_USE
