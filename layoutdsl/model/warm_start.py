@@ -12,7 +12,14 @@ from collections.abc import Mapping
 import pyomo.environ as pyo
 
 from layoutdsl.layout.geometry import Rect
-from layoutdsl.model.formulation import BOUNDARY_SIDES, SIDES, orientation_bounds, orientation_targets
+from layoutdsl.model.formulation import (
+    BOUNDARY_SIDES,
+    SIDES,
+    Formulation,
+    orientation_bounds,
+    orientation_targets,
+    target_area,
+)
 from layoutdsl.syntax.ast import Room, Spec
 
 
@@ -49,8 +56,10 @@ def best_orientation(room: Room, w: float, h: float) -> int:
 
 
 def objective_of_rects(spec: Spec, rects: Mapping[str, Rect],
-                       orientations: Mapping[str, int] | None = None) -> float:
-    """(5.1) evaluated on plain rectangles (the reported objective, not SCIP's figure)."""
+                       orientations: Mapping[str, int] | None = None,
+                       formulation: Formulation = Formulation()) -> float:
+    """(5.1) evaluated on plain rectangles (the reported objective, not SCIP's figure), as
+    the model built with `formulation` counts it (Formulation.cover_up_to_target)."""
     assert spec.boundary is not None
     s = spec.settings
     cover = spec.boundary.w * spec.boundary.h
@@ -58,7 +67,8 @@ def objective_of_rects(spec: Spec, rects: Mapping[str, Rect],
     for room in spec.rooms:
         _, _, w, h = rects[room.id]
         o = orientations[room.id] if orientations and room.id in orientations else best_orientation(room, w, h)
-        cover -= room.rho_cover * w * h
+        covered = min(w * h, target_area(room)) if formulation.cover_up_to_target else w * h
+        cover -= room.rho_cover * covered
         error += room.rho_error * _size_error(room, w, h, o)
     return s.lambda_cover * cover + s.lambda_error * error
 
