@@ -74,26 +74,26 @@ def objective_of_rects(spec: Spec, rects: Mapping[str, Rect],
 
 
 def _relation(a: Rect, b: Rect, wall: float, tol: float = 1e-6) -> list[str]:
-    """The sides of b on which a lies with at least `wall` between them."""
+    """The sides of b on which a lies with at least `wall` between them, the widest gap first.
+
+    A pair apart on both axes (diagonal) may keep either relation; the one with the wider
+    gap leaves the rooms more room to grow once it is fixed (a polish keeps every relation
+    of its start). Measured on office_PineCondos (43 rooms, boundary 4 % over the targets'
+    area): the polished start reached 0.785 of the target area instead of 0.769 with the
+    horizontal relation always first.
+    """
     ax, ay, aw, ah = a
     bx, by, bw, bh = b
-    sides = []
-    if ax + aw + wall <= bx + tol:
-        sides.append("left")
-    if bx + bw + wall <= ax + tol:
-        sides.append("right")
-    if ay + ah + wall <= by + tol:
-        sides.append("below")
-    if by + bh + wall <= ay + tol:
-        sides.append("above")
-    return sides
+    gaps = {"left": bx - (ax + aw), "right": ax - (bx + bw), "below": by - (ay + ah), "above": ay - (by + bh)}
+    sides = [side for side in SIDES if gaps[side] + tol >= wall]
+    return sorted(sides, key=lambda side: -gaps[side])
 
 
 def relations_of_rects(spec: Spec, rects: Mapping[str, Rect]) -> dict[tuple[str, str], str]:
     """A side for every room pair (and room-obstacle pair) of a feasible geometry.
 
-    For adjacent pairs it is the side of their shared wall; otherwise the first side that
-    holds. Pairs with no valid side (overlapping rectangles) are left out.
+    For adjacent pairs it is the side of their shared wall; otherwise the side with the
+    widest gap. Pairs with no valid side (overlapping rectangles) are left out.
     """
     assert spec.boundary is not None
     wall = spec.settings.walldim
