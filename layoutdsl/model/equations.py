@@ -287,6 +287,7 @@ def join_l_arms(m: pyo.ConcreteModel, joins: Mapping[tuple[str, str], str],
             flush.append((m.x[box], m.x[arm]) if end == "lo" else (m.x[box] + m.w[box], m.x[arm] + m.w[arm]))
     m.join_l_arms.flush = pyo.Constraint(range(len(flush)), rule=lambda _, i: flush[i][0] == flush[i][1])
     turns = [(box, arm, crosses) for (box, arm), crosses in (crossing or {}).items() if (box, arm) in joins]
+    m.join_l_arms.turns = turns  # (box, arm, crosses): a warm start gives the pair orientations that obey them
     m.join_l_arms.turn = pyo.Constraint(
         range(len(turns)),
         rule=lambda _, i: m.o[turns[i][1]] == (1 - m.o[turns[i][0]] if turns[i][2] else m.o[turns[i][0]]),

@@ -156,13 +156,14 @@ def _start_rooms(model: pyo.ConcreteModel, spec: Spec, rects: Mapping[str, Rect]
     """x, y, w, h, o of each room and its (5.2), (5.3) objective helpers."""
     put = start.put
     rooms = {room.id: room for room in spec.rooms}
+    orientations = _orientations(model, rooms, rects)
     for r in model.rooms:
         x, y, w, h = rects[r]
         put(model.x[r], x)
         put(model.y[r], y)
         put(model.w[r], w)
         put(model.h[r], h)
-        o = best_orientation(rooms[r], w, h)
+        o = orientations[r]
         if not _fits(rooms[r], w, h, o):
             start.problems.append(f"room {r}: size {w:g} x {h:g} fits neither orientation")
         put(model.o[r], o)
@@ -178,6 +179,28 @@ def _start_rooms(model: pyo.ConcreteModel, spec: Spec, rects: Mapping[str, Rect]
         put(model.eq5_3_error.err_w[r], err_w)
         put(model.eq5_3_error.err_h[r], err_h)
         put(model.eq5_3_error.sq[r], err_w**2 + err_h**2)
+
+
+def _orientations(model: pyo.ConcreteModel, rooms: Mapping[str, Room], rects: Mapping[str, Rect]) -> dict[str, int]:
+    """o per room: the best that fits (best_orientation), except where an L-room's arm must
+    turn with its box (model.join_l_arms.turns) and the geometry fits the turned one too.
+
+    A square-ish arm fits both orientations, and the best for its own size error may break
+    the turn: a start with that o is infeasible, and so is every polish that fixes it
+    (measured: every polish of office_324-Elm-Furn-Plan's construction failed so).
+    """
+    orientations = {r: best_orientation(rooms[r], *rects[r][2:]) for r in model.rooms}
+    turns = getattr(model.join_l_arms, "turns", []) if hasattr(model, "join_l_arms") else []
+    for box, arm, crosses in turns:
+        wanted = 1 - orientations[box] if crosses else orientations[box]
+        if orientations[arm] == wanted:
+            continue
+        if _fits(rooms[arm], *rects[arm][2:], wanted):
+            orientations[arm] = wanted
+        elif _fits(rooms[box], *rects[box][2:], 1 - orientations[box]):
+            # the arm keeps its only orientation, the box turns to match it
+            orientations[box] = 1 - orientations[box]
+    return orientations
 
 
 def _start_relations(model: pyo.ConcreteModel, spec: Spec, rects: Mapping[str, Rect], start: _Start) -> None:
