@@ -1,7 +1,7 @@
 """L-shaped rooms (issue 14) on the real plans: fitting, compile time, realism.
 
     python bench/lrooms.py fit                 # how many spaces become L-rooms, how well they fit
-    python bench/lrooms.py compile [--only a,b] [--seeds N]
+    python bench/lrooms.py compile [--only a,b] [--seeds N] [--first] [--keep-arrangement]
                                                # compile with L-rooms and rectangular-only
     python bench/lrooms.py realism [--only a,b] [--variants 5]
                                                # the thesis' experiment (§6.5.3), both ways
@@ -102,15 +102,17 @@ def _graph_exact(spec, layout) -> bool:
     return wanted == have
 
 
-def compile_table(paths: list[Path], seeds: int, time_limit: float, search: bool) -> list[str]:
-    """Per plan and seed: compile time and verdict with L-rooms and rectangular-only."""
+def compile_table(paths: list[Path], seeds: int, time_limit: float, search: bool,
+                  hints: bool = False) -> list[str]:
+    """Per plan and seed: compile time and verdict with L-rooms and rectangular-only (with
+    `hints`, both imported with the original arrangement as hints, --keep-arrangement)."""
     rule = ("SCIP searches until the gap or the limit" if search else
             "no search: the first verified layout polished with its relations fixed (the variants' rule)")
     # both modes compile under the same rule
     lines = [
         f"# compile with L-rooms vs rectangular-only, time limit {time_limit:g} s, seeds 0..{seeds - 1}, "
         f"{os.cpu_count()} cores shared with other work (timings inflated by contention)",
-        f"# both modes: {rule}",
+        f"# both modes: {rule}" + ("; imported with --keep-arrangement (hints)" if hints else ""),
         "# L s / rect s: the whole compile with L-rooms / rectangular-only; rect first: seconds to "
         "the first verified rectangular layout; graph: the L layout's portals are exactly the "
         "spec's adjacencies; ratio = L s / rect s",
@@ -120,8 +122,8 @@ def compile_table(paths: list[Path], seeds: int, time_limit: float, search: bool
     totals = []
     for path in paths:
         building = _building(path)
-        spec_l, _ = convert(building, ImportOptions())
-        spec_r, _ = convert(building, ImportOptions(rectangular_only=True))
+        spec_l, _ = convert(building, ImportOptions(hints=hints))
+        spec_r, _ = convert(building, ImportOptions(rectangular_only=True, hints=hints))
         spec_l = replace(spec_l, name=path.stem)
         spec_r = replace(spec_r, name=path.stem)
         for seed in range(seeds):
@@ -225,6 +227,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--time-limit", type=float, default=60.0)
     parser.add_argument("--first", action="store_true",
                         help="compile: stop at the first verified layout, polished (both modes)")
+    parser.add_argument("--keep-arrangement", action="store_true",
+                        help="compile: import with the original arrangement as hints (both modes)")
     parser.add_argument("--workdir", type=Path, default=Path("/tmp") / "lrooms-bench")
     parser.add_argument("--out", type=Path, help="also write the table to this file")
     args = parser.parse_args(argv)
@@ -235,7 +239,7 @@ def main(argv: list[str] | None = None) -> int:
         lines = fit_table(_plans(args.plans, args.only))
     elif args.what == "compile":
         lines = compile_table(_plans(args.plans, args.only or ",".join(ACCEPTANCE)), args.seeds, args.time_limit,
-                              not args.first)
+                              not args.first, args.keep_arrangement)
     else:
         lines = realism_table(_plans(args.plans, args.only), args.variants, args.time_limit, args.workdir)
     text = "\n".join(lines) + "\n"

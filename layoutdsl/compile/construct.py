@@ -33,11 +33,12 @@ import random
 import sys
 import time
 from dataclasses import dataclass, replace
+from collections.abc import Mapping
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
 from layoutdsl.compile import lshape
-from layoutdsl.compile.generate import RoomSizes, cycle_blocks, generate_geometry
-from layoutdsl.compile.ladders import ladder_template
+from layoutdsl.compile.generate import RoomSizes, cycle_blocks, drawn_sides, generate_geometry
+from layoutdsl.compile.ladders import find_ladder, ladder_template
 from layoutdsl.syntax.ast import Room, Spec
 
 
@@ -829,6 +830,7 @@ def construct_start(
     deadline: float | None = None,
     randomize: bool = False,
     use_hints: bool = True,
+    hanging: Mapping[str, float] | None = None,
 ) -> dict[str, Rect] | None:
     """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
 
@@ -837,6 +839,8 @@ def construct_start(
     to the target sizes (when the spec has hints and `use_hints`), then geometries grown
     from the room graph (layoutdsl.compile.generate), then spring embeddings. `randomize` (hint-based
     variants) perturbs the hints from `seed`; the graph geometries are always drawn from it.
+    `hanging` (a part of a larger spec, such as a cycle block) is the area of the rooms that
+    hang off each room outside the part: the part leaves them space.
     """
     if spec.boundary is None or not spec.rooms:
         return None
@@ -844,18 +848,25 @@ def construct_start(
         deadline = time.monotonic() + DEFAULT_SECONDS
     problem = _Problem.of(spec)
     rng = random.Random(seed)
-    has_hints = use_hints and hint_geometry(spec) is not None
-    templates = None if has_hints else _TemplateSets(spec, seed, deadline)
-    candidates = list(_seed_geometries(spec, rng, randomize, use_hints, templates))
+    # an L-room's arm is drawn as a room of its own (lshape.seeds_spec)
+    drawn = lshape.seeds_spec(spec)
+    has_hints = use_hints and hint_geometry(drawn) is not None
+    templates = None if has_hints else _TemplateSets(drawn, seed, deadline, hanging or {})
+    candidates = list(_seed_geometries(drawn, rng, randomize, use_hints, templates))
     for index, (kind, make_geometry) in enumerate(candidates):
         left = deadline - time.monotonic()
         if left <= 0.05:
             return None
         geometry = _cover_points(spec, make_geometry())
+        # making it may have taken a while (solving the cycle blocks): the repair's share
+        # is of the time left now, so the construction keeps its deadline
+        left = deadline - time.monotonic()
+        if left <= 0.05:
+            return None
         candidate_problem = problem
         if spec.arms:
             # each seed geometry says which box of an L-room meets which neighbour
-            geometry = lshape.seed_arms(spec, geometry, rng)
+            geometry = lshape.seed_arms(spec, geometry, rng, hints=kind == "hints")
             boxes, joins = lshape.boxes_spec(spec, geometry)
             candidate_problem = _Problem.of(boxes, joins=joins, checked=spec,
                                             crossing=lshape.crossings(spec))
@@ -924,7 +935,8 @@ def block_spec(spec: Spec, block: frozenset[str]) -> Spec:
     return spec.restricted_to(block, f"{spec.name}-block")
 
 
-def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Rect]]:
+def block_templates(spec: Spec, seed: int, deadline: float,
+                    hanging: Mapping[str, float] | None = None) -> list[dict[str, Rect]]:
     """Each cycle block of the room graph solved on its own: rooms placed so that every
     adjacency among them is a door (a verified layout of the block alone).
 
@@ -937,30 +949,45 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
     blocks = [b for b in cycle_blocks(spec) if len(b) < len(spec.rooms)]
     if not blocks:
         # a block itself: its ladder of corridors, if it has one, drawn outright
-        ladder = ladder_template(spec, random.Random(seed))
+        ladder = ladder_template(spec, random.Random(seed), hanging)
         if ladder is None or hard_violations(spec.restricted_to(frozenset(ladder), spec.name), ladder):
             return []
         return [ladder]
+    # blocks that share rooms are solved together; where that fails, one by one
+    todo = [(group, [b for b in blocks if b <= group]) for group in _joined_blocks(blocks)]
+    if any(len(group) == len(spec.rooms) for group, _ in todo):
+        todo = [(block, [block]) for block in blocks]
     budget_end = time.monotonic() + BLOCK_SHARE * max(0.0, deadline - time.monotonic())
     total = sum(len(b) for b in blocks)
     templates = []
     solved: dict[str, Rect] = {}
-    for block in blocks:
+    lengths = {room_id: long_side for room_id, (long_side, _) in drawn_sides(spec).items()}
+    while todo:
+        block, parts = todo.pop(0)
         left = budget_end - time.monotonic()
         # a block's first repair rounds take about a second: less than BLOCK_MIN_SECONDS
         # solves nothing (measured: every 5-room block of rockislandsecondfloor failed with
         # 0.4 s each and all solved with 1.3 s), so small budgets borrow from the rest
-        share = max(BLOCK_MIN_SECONDS, left * len(block) / total)
-        total -= len(block)
+        share = max(BLOCK_MIN_SECONDS, left * len(block) / max(total, 1))
         if deadline - time.monotonic() < 2 * share:
             break
         # a room two blocks share keeps the shape the first block gave it, so the second
         # can be laid over it (measured on school_hendersonhighschool: a hall solved in
         # two shapes left the gym of the second block 7.7 m from it)
         shared = {room_id: solved[room_id][2:] for room_id in block if room_id in solved}
-        rects = construct_start(_with_shapes(block_spec(spec, block), shared), seed=seed,
-                                use_hints=False, deadline=time.monotonic() + share)
+        alone = block_spec(spec, block)
+        # a ladder's rungs must span one common gap: only its rails are lengthened
+        ladder = find_ladder(alone)
+        rungs = set(ladder[2]) if ladder else set()
+        alone = _with_long_sides(alone, {r: v for r, v in lengths.items() if r not in rungs})
+        rects = construct_start(_with_shapes(alone, shared), seed=seed,
+                                use_hints=False, deadline=time.monotonic() + share,
+                                hanging=_hanging_areas(spec, block, hanging or {}))
         _debug(f"block of {len(block)} rooms: {'solved' if rects else 'not solved'}")
+        if rects is None and len(parts) > 1:
+            todo[:0] = [(part, [part]) for part in parts]
+            continue
+        total -= len(block)
         if rects is not None:
             # the generator places rooms; an L-room's arm is seeded again beside its box
             rects = lshape.rooms_only(spec, rects)
@@ -969,8 +996,78 @@ def block_templates(spec: Spec, seed: int, deadline: float) -> list[dict[str, Re
     return templates
 
 
+JOINED_MAX_ROOMS = 24
+"""Largest set of joined blocks solved together: school_stjoseph_scatholichighschool's
+blocks would join into one of 54 rooms, as hard to solve as a whole plan."""
+
+
+def _hanging_areas(spec: Spec, part: frozenset[str], outer: Mapping[str, float]) -> dict[str, float]:
+    """Room of `part` -> drawn area of the rooms outside it that hang off that room.
+
+    A cycle block meets the rest of the graph only at its cut rooms, so each connected
+    piece of the rest hangs off exactly one room of the block. `outer`: the same for the
+    spec itself, when it is a part of a larger one.
+    """
+    import networkx as nx
+
+    sides = drawn_sides(spec)
+    graph = nx.Graph()
+    graph.add_nodes_from(room.id for room in spec.rooms)
+    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
+    hanging = {room_id: outer.get(room_id, 0.0) for room_id in part}
+    for piece in nx.connected_components(graph.subgraph(set(graph) - part)):
+        roots = {n for r in piece for n in graph[r] if n in part}
+        area = sum(sides[r][0] * sides[r][1] + outer.get(r, 0.0) for r in piece)
+        for root in roots:
+            hanging[root] += area / len(roots)
+    return hanging
+
+
+def _joined_blocks(blocks: list[frozenset[str]]) -> list[frozenset[str]]:
+    """Blocks that share a room, joined into one, largest first.
+
+    Two blocks solved apart and laid over their shared room collide around it: measured on
+    school_hendersonhighschool, whose corridor C9 is in two blocks and its hall R35 in two,
+    no full geometry repaired. Solved together (the construction of the joined rooms,
+    which solves each block first and then places them), they fit around the shared room.
+    """
+    groups: list[set[str]] = []
+    for block in blocks:
+        touching = [g for g in groups if g & block]
+        merged = set(block).union(*touching)
+        if len(merged) > JOINED_MAX_ROOMS:
+            groups.append(set(block))
+            continue
+        groups = [g for g in groups if not g & block] + [merged]
+    return sorted((frozenset(g) for g in groups), key=lambda g: (-len(g), sorted(g)))
+
+
 PIN_SLACK = 1e-4
 """Metres a shared room's pinned sides may vary by (below generate.SHAPE_TOLERANCE)."""
+
+
+def _with_long_sides(spec: Spec, lengths: dict[str, float]) -> Spec:
+    """The spec with each corridor's long side at least its drawn length (within bounds).
+
+    A block solved alone packs its corridors tight against each other, leaving no side
+    free for the rooms that hang off them outside the block (measured on
+    school_hendersonhighschool: three 9-door corridors of one block, 30 rooms piled over
+    them). Drawn lengths give each corridor the perimeter its rooms need.
+    """
+    rooms = []
+    for room in spec.rooms:
+        if room.is_corridor and room.id in lengths:
+            long_is_w = room.target_w >= room.target_h
+            hi = room.max_w if long_is_w else room.max_h
+            # within the aspect ratio the short side's bounds allow
+            hi = min(hi, room.max_ar * (room.max_h if long_is_w else room.max_w))
+            want = min(hi, lengths[room.id])
+            if long_is_w and want > room.min_w:
+                room = replace(room, min_w=want, target_w=max(room.target_w, want))
+            elif not long_is_w and want > room.min_h:
+                room = replace(room, min_h=want, target_h=max(room.target_h, want))
+        rooms.append(room)
+    return replace(spec, rooms=tuple(rooms))
 
 
 def _with_shapes(spec: Spec, shapes: dict[str, tuple[float, float]]) -> Spec:
@@ -1000,10 +1097,10 @@ class _TemplateSets:
     the time, later ones with at most TEMPLATE_RESOLVE_FACTOR times what the first took.
     """
 
-    def __init__(self, spec: Spec, seed: int, deadline: float):
-        self.spec, self.seed, self.deadline = spec, seed, deadline
+    def __init__(self, spec: Spec, seed: int, deadline: float, hanging: Mapping[str, float] | None = None):
+        self.spec, self.seed, self.deadline, self.hanging = spec, seed, deadline, hanging or {}
         began = time.monotonic()
-        self.sets = [block_templates(spec, seed, deadline)]
+        self.sets = [block_templates(spec, seed, deadline, hanging)]
         self.first_seconds = time.monotonic() - began
 
     def get(self, index: int) -> list[dict[str, Rect]]:
@@ -1011,7 +1108,7 @@ class _TemplateSets:
             budget = BLOCK_MIN_SECONDS + TEMPLATE_RESOLVE_FACTOR * self.first_seconds
             deadline = min(self.deadline, time.monotonic() + budget / BLOCK_SHARE)
             self.sets.append(block_templates(self.spec, self.seed + len(self.sets) * TEMPLATE_SEED_STEP,
-                                             deadline))
+                                             deadline, self.hanging))
         return self.sets[index]
 
 

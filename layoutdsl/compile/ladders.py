@@ -18,6 +18,7 @@ The construction uses it only when it satisfies every hard constraint among its 
 from __future__ import annotations
 
 import random
+from collections.abc import Mapping
 from itertools import combinations
 
 import networkx as nx
@@ -77,10 +78,16 @@ def _rung_width(sizes: RoomSizes, gap: float, corridor: bool, wall: float) -> fl
     return None
 
 
-def ladder_template(spec: Spec, rng: random.Random) -> dict[str, Rect] | None:
+def ladder_template(spec: Spec, rng: random.Random,
+                    hanging: Mapping[str, float] | None = None) -> dict[str, Rect] | None:
     """The ladder of the spec drawn as rectangles (its rooms only), or None when the rungs
     allow no common gap or the rails cannot hold them. The caller checks the result against
-    the hard constraints among its rooms before using it."""
+    the hard constraints among its rooms before using it.
+
+    `hanging`: room -> area of the rooms outside the spec that hang off it. Rooms hanging off
+    a rung can only lie between the rails, beside it: the spacing next to a rung gets their
+    area over the gap (measured on office_OfficePlan: ten rooms hang off one rung).
+    """
     found = find_ladder(spec)
     if found is None or spec.boundary is None:
         return None
@@ -107,13 +114,34 @@ def ladder_template(spec: Spec, rng: random.Random) -> dict[str, Rect] | None:
         return None
     order = list(rungs)
     rng.shuffle(order)
+    hanging = hanging or {}
+    # the rung with the most rooms hanging off it goes first, the rails flush with its
+    # outer side: its rooms take the open end of the ladder, as a hall at the end of two
+    # corridors does (office_OfficePlan: six rooms off the hall C8)
+    outside = max(order, key=lambda r: hanging.get(r, 0.0)) if hanging else None
+    if outside is not None and hanging.get(outside, 0.0) > 0:
+        order.remove(outside)
+        order.insert(0, outside)
+    else:
+        outside = None
     depth = sorted(RoomSizes.of(room).target_short for room in spec.rooms)[len(spec.rooms) // 2]
-    spacings = [walldim + rng.uniform(0, SPACING_ROOMS) * depth for _ in order[1:]]
+    # each other rung's hanging rooms split over the spacings beside it
+    beside = [0.0] * max(0, len(order) - 1)
+    for k, r in enumerate(order):
+        if r == outside:
+            continue
+        slots = [j for j in (k - 1, k) if 0 <= j < len(beside)]
+        for j in slots:
+            beside[j] += hanging.get(r, 0.0) / len(slots) / max(gap, walldim)
+    spacings = [walldim + extra + rng.uniform(0, SPACING_ROOMS) * depth for extra in beside]
     rails = {}
     for rail in (rail_a, rail_b):
         span = sum(widths.values()) + sum(spacings)
         if span > sizes[rail].hi_long:
-            spacings = [walldim] * len(spacings)
+            # the hanging rooms' share as far as the rail allows, nothing drawn beyond
+            spare = sizes[rail].hi_long - sum(widths.values()) - walldim * len(spacings)
+            scale = min(1.0, max(0.0, spare) / sum(beside)) if sum(beside) > 0 else 0.0
+            spacings = [walldim + extra * scale for extra in beside]
             span = sum(widths.values()) + sum(spacings)
         if span > sizes[rail].hi_long:
             return None
@@ -122,13 +150,16 @@ def ladder_template(spec: Spec, rng: random.Random) -> dict[str, Rect] | None:
     span = sum(widths.values()) + sum(spacings)
     rects: dict[str, Rect] = {}
     thick_a = min(sizes[rail_a].hi_short, max(sizes[rail_a].lo_short, rails[rail_a][1]))
-    rects[rail_a] = (-rng.uniform(0, rails[rail_a][0] - span), 0.0, rails[rail_a][0], thick_a)
+    def rail_start(rail: str) -> float:
+        return 0.0 if outside is not None else -rng.uniform(0, rails[rail][0] - span)
+
+    rects[rail_a] = (rail_start(rail_a), 0.0, rails[rail_a][0], thick_a)
     x = 0.0
     for k, r in enumerate(order):
         rects[r] = (x, thick_a + walldim, widths[r], gap)
         x += widths[r] + (spacings[k] if k < len(spacings) else 0.0)
     thick_b = min(sizes[rail_b].hi_short, max(sizes[rail_b].lo_short, rails[rail_b][1]))
-    rects[rail_b] = (-rng.uniform(0, rails[rail_b][0] - span), thick_a + 2 * walldim + gap,
+    rects[rail_b] = (rail_start(rail_b), thick_a + 2 * walldim + gap,
                      rails[rail_b][0], thick_b)
     x0 = min(x for x, _, _, _ in rects.values())
     y0 = min(y for _, y, _, _ in rects.values())

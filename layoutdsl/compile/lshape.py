@@ -9,17 +9,19 @@ several rectangles). A join's option names where the room's box lies relative to
 and which end they align at, e.g. `below:lo` (the box is below the arm, left edges flush).
 
 Which box realises an adjacency of the L is read off each seed geometry, like every other
-relation: the box nearer the neighbour. The generator sizes and places an L-room by its
-first box; `seed_arms` then puts the arm beside it where it overlaps least.
+relation: the box nearer to meeting the neighbour. The generator draws an L-room's arm as a
+room of its own hung off the box (`seeds_spec`), so it keeps space for it; `seed_arms` then
+joins the arm to the box where it overlaps and misses least, nearest where it was drawn.
 """
 
 from __future__ import annotations
 
+import math
 import random
 from dataclasses import replace
 
 from layoutdsl.layout.geometry import SIDES, Rect
-from layoutdsl.syntax.ast import Adjacency, Spec, arm_id
+from layoutdsl.syntax.ast import Adjacency, Hint, Spec, arm_id
 
 ENDS = ("lo", "hi")
 """Which ends of the shared side are flush: the low ones (left or bottom edges) or the high."""
@@ -44,8 +46,14 @@ def crossings(spec: Spec) -> dict[tuple[str, str], bool]:
 
 
 def arm_sizes(arm, room, room_box: Rect) -> list[tuple[float, float]]:
-    """The arm's target (w, h) in the orientations its L allows beside `room_box`."""
-    long_side, short_side = max(arm.target_w, arm.target_h), min(arm.target_w, arm.target_h)
+    """The arm's (w, h) in the orientations its L allows beside `room_box`: its target,
+    scaled as the box is against the room's target when the box is drawn smaller (the
+    generator draws rooms shrunk to leave the repair space; an arm at full size would take
+    the space the shrinking left), never below the arm's minimum sides."""
+    scale = min(1.0, math.sqrt(room_box[2] * room_box[3] / max(room.target_w * room.target_h, 1e-9)))
+    lo_long, lo_short = max(arm.min_w, arm.min_h), min(arm.min_w, arm.min_h)
+    long_side = max(lo_long, scale * max(arm.target_w, arm.target_h))
+    short_side = max(lo_short, scale * min(arm.target_w, arm.target_h))
     crosses = arm.crosses(room)
     if crosses is None or long_side == short_side:
         return [(long_side, short_side), (short_side, long_side)]
@@ -73,9 +81,46 @@ def boxes_spec(spec: Spec, geometry: dict[str, Rect]) -> tuple[Spec, frozenset[t
         rooms.append(room)
         if room.id in armed:
             rooms.append(armed[room.id].as_room(room))
-    adjacencies = tuple(_nearer_boxes(adj, armed, geometry) for adj in spec.adjacencies)
+    walldim, utilization = spec.settings.walldim, spec.settings.door_utilization
+    adjacencies = tuple(_nearer_boxes(adj, armed, geometry, walldim, adj.door / utilization)
+                        for adj in spec.adjacencies)
     joins = frozenset((room_id, arm_id(room_id)) for room_id in armed)
     return replace(spec, rooms=tuple(rooms), adjacencies=adjacencies, arms=()), joins
+
+
+def seeds_spec(spec: Spec) -> Spec:
+    """The spec the seed geometries are drawn for: each L-room's arm a room of its own,
+    hung off the room's box by a door as wide as the arm's narrow side at its least.
+
+    So the generator (compile.generate) places the arm with the rest, in the space it keeps
+    free around the box, and counts its area when it decides how tightly to pack; an arm
+    added afterwards beside a box whose sides the neighbours already took overlaps them
+    (measured: most of the extra repair rounds of L-specs, issue 14). `seed_arms` then
+    joins each arm to its box nearest where it was drawn. With hints, each arm's hint is
+    where `seed_arms` puts it beside its room's hint (the arm's place in the original plan
+    is not in the spec).
+    """
+    rooms_by_id = {room.id: room for room in spec.rooms}
+    armed = {arm.room: arm for arm in spec.arms if arm.room in rooms_by_id}
+    if not armed:
+        return spec
+    rooms, joins = [], []
+    utilization = spec.settings.door_utilization
+    for room in spec.rooms:
+        rooms.append(room)
+        if room.id in armed:
+            arm = armed[room.id]
+            rooms.append(arm.as_room(room))
+            narrow = min(arm.min_w, arm.min_h)
+            joins.append(Adjacency(room.id, arm_id(room.id), utilization * narrow, "i"))
+    hints = spec.hints
+    hinted = {hint.room: hint for hint in hints}
+    if hints and all(room.id in hinted for room in spec.rooms):
+        boxes = {h.room: (h.x, h.y, h.w, h.h) for h in hints}
+        seeded = seed_arms(spec, boxes, random.Random(0), hints=True)
+        hints = hints + tuple(Hint(arm_id(room_id), *seeded[arm_id(room_id)]) for room_id in armed)
+    return replace(spec, rooms=tuple(rooms), adjacencies=spec.adjacencies + tuple(joins),
+                   hints=hints, arms=())
 
 
 def beside_pairs(boxes: Spec, joins) -> frozenset[frozenset[str]]:
@@ -102,15 +147,22 @@ def _boxes_of(room_id: str, armed) -> tuple[str, ...]:
     return (room_id, arm_id(room_id)) if room_id in armed else (room_id,)
 
 
-def _nearer_boxes(adj: Adjacency, armed, geometry: dict[str, Rect]) -> Adjacency:
-    """The adjacency between the two boxes of its rooms that lie nearest in `geometry`."""
+def _nearer_boxes(adj: Adjacency, armed, geometry: dict[str, Rect], walldim: float,
+                  wall: float) -> Adjacency:
+    """The adjacency between the two boxes of its rooms that come nearest in `geometry` to
+    meeting as its door needs (a wall apart, sharing `wall` m), then that lie nearest: a
+    box overlapping the neighbour is no nearer to a door than one a wall away."""
     if adj.a not in armed and adj.b not in armed:
         return adj
     choices = [(a, b) for a in _boxes_of(adj.a, armed) for b in _boxes_of(adj.b, armed)
                if a in geometry and b in geometry]
     if not choices:
         return adj
-    a, b = min(choices, key=lambda pair: box_distance(geometry[pair[0]], geometry[pair[1]]))
+
+    def key(pair):
+        first, second = geometry[pair[0]], geometry[pair[1]]
+        return (round(contact_shortfall(first, second, walldim, wall), 6), box_distance(first, second))
+    a, b = min(choices, key=key)
     return replace(adj, a=a, b=b)
 
 
@@ -162,35 +214,118 @@ def _overlap(a: Rect, b: Rect) -> float:
     return max(0.0, min(ax + aw, bx + bw) - max(ax, bx)) * max(0.0, min(ay + ah, by + bh) - max(ay, by))
 
 
-def seed_arms(spec: Spec, geometry: dict[str, Rect], rng: random.Random) -> dict[str, Rect]:
-    """The geometry with an arm for every L-room that has none yet: its target size, in
-    either orientation, joined to the room's box where it overlaps the other boxes and
-    leaves the boundary least (ties drawn from `rng`)."""
+def seed_arms(spec: Spec, geometry: dict[str, Rect], rng: random.Random, *,
+              hints: bool = False) -> dict[str, Rect]:
+    """The geometry with every L-room's arm joined to its box: at its target size (see
+    arm_sizes), in the orientations its L allows, where it overlaps the other boxes, leaves
+    the boundary and misses the L-room's neighbours least, and lies against other rooms
+    most; of equal places, the one nearest where the geometry drew the arm, if it did (the
+    generator draws it as a room of its own, seeds_spec, a wall from its box, maybe turned
+    the way the L forbids); then one drawn from `rng`.
+
+    Overlap counts as a geometry's rooms meet: in a generated geometry neighbours lie a wall
+    apart, so an arm closer than a wall to a room overlaps it; in a hint geometry (`hints`:
+    the original plan's boxes) neighbours overlap by about a wall, which is no conflict.
+    """
     boundary = spec.boundary
     assert boundary is not None
+    walldim = spec.settings.walldim
+    # how deep the arm may overlap another box before it is a conflict
+    allowance = walldim if hints else -(walldim - 1e-6)
     outside = (-boundary.w, -boundary.h, 3 * boundary.w, 3 * boundary.h)
     inside = (0.0, 0.0, boundary.w, boundary.h)
     seeded = dict(geometry)
     rooms = {room.id: room for room in spec.rooms}
+    walls = _walls(spec)
     for arm in spec.arms:
         key = arm_id(arm.room)
-        if key in seeded or arm.room not in seeded:
+        drawn = seeded.pop(key, None)
+        if arm.room not in seeded:
             continue
         room_box = seeded[arm.room]
         others = [box for other, box in seeded.items() if other != arm.room]
+        # the L-room's neighbours the box does not meet yet: the arm may meet them instead
+        # (with hints, the arm's own place in the original plan is where it meets them)
+        missed = [(seeded[other], wall) for other, wall in walls.get(arm.room, ())
+                  if other in seeded and contact_shortfall(room_box, seeded[other], walldim, wall) > 0]
         best = None
         for option in JOIN_OPTIONS:
             for size in arm_sizes(arm, rooms[arm.room], room_box):
                 box = joined_box(room_box, size, option)
                 out = _overlap(box, outside) - _overlap(box, inside)
-                score = sum(_overlap(box, other) for other in others) + 2.0 * out
+                core = (box[0] + allowance, box[1] + allowance, box[2] - 2 * allowance, box[3] - 2 * allowance)
+                score = sum(_overlap(core, other) for other in others) + 2.0 * out
+                # lying against other rooms rather than in open space: in a hint geometry,
+                # where the arm was in the original plan
+                score -= TOUCH_BONUS * sum(_touching(box, other, walldim) for other in others)
+                score += CONTACT_COST * sum(
+                    min(contact_shortfall(room_box, other, walldim, wall),
+                        contact_shortfall(box, other, walldim, wall))
+                    for other, wall in missed)
                 # an L's arms meet at their ends: the arm's short side on the room's box
                 # (a corridor turning a corner), not its long side (a wider corridor)
                 shares_long_side = (option.split(":")[0] in ("below", "above")) == (size[0] > size[1])
                 score += LONG_SIDE_JOIN_COST * shares_long_side
+                if drawn is not None:
+                    score += DRAWN_COST * math.dist(_centre(box), _centre(drawn))
                 candidate = (round(score, 9), rng.random(), box)
                 if best is None or candidate[:2] < best[:2]:
                     best = candidate
         assert best is not None
         seeded[key] = best[2]
     return seeded
+
+
+CONTACT_COST = 1.0
+"""Score (m² of overlap) a seed arm pays per metre an L-room's neighbour is from meeting
+the L (neither box touching it with its door's wall)."""
+
+
+DRAWN_COST = 0.1
+"""Score (m² of overlap) a seed arm pays per metre its centre lies from the arm drawn by
+the generator: the space kept free for it."""
+
+
+def _centre(box: Rect) -> tuple[float, float]:
+    return (box[0] + box[2] / 2, box[1] + box[3] / 2)
+
+
+TOUCH_BONUS = 0.05
+"""Score (m² of overlap) a seed arm gains per metre of its sides that lie against another
+room: less than any real overlap, more than nothing."""
+
+
+def _touching(a: Rect, b: Rect, walldim: float) -> float:
+    """Length along which two boxes lie against each other (a gap of at most a wall and a
+    half, or an overlap of at most a wall)."""
+    gap_x, gap_y = _gaps(a, b)
+    if -walldim <= gap_x <= 1.5 * walldim and gap_y < 0:
+        return -gap_y
+    if -walldim <= gap_y <= 1.5 * walldim and gap_x < 0:
+        return -gap_x
+    return 0.0
+
+
+def _walls(spec: Spec) -> dict[str, list[tuple[str, float]]]:
+    """Room id -> (neighbour, wall length its door needs) for each of its adjacencies."""
+    walls: dict[str, list[tuple[str, float]]] = {}
+    for adj in spec.adjacencies:
+        wall = adj.door / spec.settings.door_utilization
+        walls.setdefault(adj.a, []).append((adj.b, wall))
+        walls.setdefault(adj.b, []).append((adj.a, wall))
+    return walls
+
+
+def contact_shortfall(a: Rect, b: Rect, walldim: float, wall: float) -> float:
+    """Metres two boxes are from touching with one wall between them and `wall` m of it
+    shared (0: they do)."""
+    gap_x, gap_y = _gaps(a, b)
+    along_x = abs(gap_x - walldim) + max(0.0, wall + gap_y)
+    along_y = abs(gap_y - walldim) + max(0.0, wall + gap_x)
+    return max(0.0, min(along_x, along_y) - 1e-6)
+
+
+def _gaps(a: Rect, b: Rect) -> tuple[float, float]:
+    ax, ay, aw, ah = a
+    bx, by, bw, bh = b
+    return max(bx - ax - aw, ax - bx - bw), max(by - ay - ah, ay - by - bh)

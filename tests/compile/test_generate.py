@@ -293,3 +293,95 @@ def test_a_variant_close_to_an_earlier_one_is_redrawn_with_the_next_seed(monkeyp
     assert calls == [[13, 14]]  # one round, the next unused seeds, in variant order
     assert seeds == [10, 13, 14]
     assert [layout for layout, _ in results] == [first, far, farther]
+
+
+def test_blocks_sharing_a_room_are_joined_and_solved_together():
+    from _specs import adjacent, room
+
+    from layoutdsl.compile.construct import JOINED_MAX_ROOMS, _joined_blocks, block_templates
+    from layoutdsl.syntax.ast import Spec
+
+    a, b, c = frozenset("SAB"), frozenset("SCD"), frozenset("XYZ")
+    assert _joined_blocks([a, b, c]) == [frozenset("SABCD"), c]
+    # a join beyond the cap leaves the block on its own
+    big = frozenset(f"Q{i}" for i in range(JOINED_MAX_ROOMS)) | {"S"}
+    assert _joined_blocks([big, a]) == [big, a]
+
+    # the bow tie of two triangles sharing the hall S, with a room hanging off A: the two
+    # triangles come back as one template in which both rings close around S
+    rooms = (room("S", 8.0, 5.0), room("A", 4.0, 3.0), room("B", 4.0, 3.0),
+             room("C", 4.0, 3.0), room("D", 4.0, 3.0), room("T", 3.0, 3.0))
+    adjacencies = tuple(adjacent(x, y) for x, y in
+                        [("S", "A"), ("A", "B"), ("B", "S"), ("S", "C"), ("C", "D"), ("D", "S"),
+                         ("A", "T")])
+    spec = Spec("bowtie-tail", rooms, Boundary(30.0, 30.0), adjacencies)
+    (template,) = block_templates(spec, seed=1, deadline=time.monotonic() + 30)
+    assert set(template) == set("SABCD")
+    joined = spec.restricted_to(frozenset("SABCD"), "joined")
+    assert verify(joined, rects_to_layout(joined, template)) == []
+
+
+def test_a_corridor_is_drawn_long_enough_for_the_rooms_on_it():
+    from _specs import adjacent, room
+
+    from layoutdsl.compile.construct import _with_long_sides
+    from layoutdsl.compile.generate import FRONTAGE_USE, RoomSizes, drawn_sides
+    from layoutdsl.syntax.ast import Spec
+
+    # a 10 m corridor with twelve 4 m offices: their short sides need ~46 m of its perimeter
+    rooms = (room("C", 10.0, 2.0, rtype="C", var=0.8),) + tuple(room(f"R{i}", 5.0, 4.0) for i in range(12))
+    spec = Spec("hub", rooms, Boundary(60.0, 60.0), tuple(adjacent("C", f"R{i}") for i in range(12)))
+    sides = drawn_sides(spec)
+    corridor = RoomSizes.of(rooms[0])
+    need = sum(sides[f"R{i}"][1] for i in range(12)) / FRONTAGE_USE
+    long_side, short_side = sides["C"]
+    # as long as its rooms need, or as long as its bounds allow
+    assert long_side == pytest.approx(min(corridor.hi_long, need / 2 - short_side))
+    assert long_side > 10.0
+    # a block containing the corridor is solved with that length as its least long side
+    lengthened = _with_long_sides(spec, {"C": long_side})
+    c = lengthened.rooms[0]
+    assert c.min_w == pytest.approx(long_side) and c.min_w <= c.max_w
+    assert c.min_h == rooms[0].min_h
+    # rooms that are not corridors keep their bounds
+    assert lengthened.rooms[1:] == rooms[1:]
+    # in a boundary the rooms' targets nearly fill, the corridor keeps its drawn length
+    dense = replace(spec, boundary=Boundary(17.0, 17.0))
+    assert drawn_sides(dense)["C"][0] < 10.0
+
+
+def test_rooms_hanging_off_a_rung_get_the_space_beside_it():
+    from _specs import ladder_spec
+
+    from layoutdsl.compile.construct import _hanging_areas, block_spec, hard_violations
+    from layoutdsl.compile.generate import cycle_blocks, drawn_sides
+    from layoutdsl.compile.ladders import ladder_template
+
+    spec = ladder_spec()
+    (block,) = cycle_blocks(spec)
+    ring = block_spec(spec, block)
+    hanging = _hanging_areas(spec, block, {})
+    # the office on each rung is all that hangs off the ladder: its drawn area, on its rung
+    sides = drawn_sides(spec)
+    assert hanging == pytest.approx({**{r: 0.0 for r in block},
+                                     **{f"K{i}": sides[f"R{i}"][0] * sides[f"R{i}"][1] for i in range(3)}})
+    for seed in range(4):
+        rects = ladder_template(ring, random.Random(seed), {"K1": 40.0, "K2": 30.0})
+        assert rects is not None
+        assert hard_violations(ring.restricted_to(frozenset(rects), "ladder"), rects) == []
+        along = 0 if rects["A"][2] > rects["A"][3] else 1  # the rails' axis
+        gap = min(max(rects[k][2:]) for k in ("K0", "K1", "K2"))
+        rungs = sorted(("K0", "K1", "K2"), key=lambda k: rects[k][along])
+        # the rung with the most hanging off it is at an end, the rails flush with it: its
+        # rooms take the ladder's open end
+        assert "K1" in (rungs[0], rungs[-1])
+        start = min(rects[r][along] for r in ("A", "B"))
+        end = max(rects[r][along] + rects[r][2 + along] for r in ("A", "B"))
+        outer = rects["K1"][along] if rungs[0] == "K1" else rects["K1"][along] + rects["K1"][2 + along]
+        assert outer == pytest.approx(start if rungs[0] == "K1" else end)
+        # the strips beside K2 (to the next rung either way) hold its 30 m² over the gap
+        free = 0.0
+        for left, right in zip(rungs, rungs[1:]):
+            if "K2" in (left, right):
+                free += rects[right][along] - rects[left][along] - rects[left][2 + along]
+        assert free * gap >= 30.0 - 1e-6, (seed, free, gap)

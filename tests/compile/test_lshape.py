@@ -6,7 +6,9 @@ import random
 
 import pytest
 
-from layoutdsl.compile.lshape import JOIN_OPTIONS, boxes_spec, join_option, joined_box, seed_arms
+from dataclasses import replace
+
+from layoutdsl.compile.lshape import JOIN_OPTIONS, arm_sizes, boxes_spec, join_option, joined_box, seed_arms
 from layoutdsl.syntax.ast import Adjacency, Arm, Boundary, Room, Spec, arm_id
 
 
@@ -63,3 +65,62 @@ def test_an_ls_other_box_is_kept_exactly_a_wall_from_its_neighbour() -> None:
     geometry = {"C0": (0.0, 0.0, 10.0, 2.0), arm_id("C0"): (0.0, 2.0, 2.0, 6.0), "R0": (2.2, 4.5, 4.0, 4.0)}
     boxes, joins = boxes_spec(spec, geometry)
     assert beside_pairs(boxes, joins) == {frozenset(("R0", "C0"))}
+
+
+def _room_overlap(a, b) -> float:
+    """Overlap area of two (x, y, w, h) boxes, computed here independently."""
+    dx = min(a[0] + a[2], b[0] + b[2]) - max(a[0], b[0])
+    dy = min(a[1] + a[3], b[1] + b[3]) - max(a[1], b[1])
+    return max(0.0, dx) * max(0.0, dy)
+
+
+def test_seed_arms_turns_the_l_towards_a_neighbour_its_box_misses() -> None:
+    """R0 is 2 m above the corridor's box, so no door there; of the places where the arm
+    overlaps nothing, only the one at the box's left end, going up, meets R0 a wall apart."""
+    spec = _spec()
+    box = (5.0, 8.0, 10.0, 2.0)
+    geometry = {"C0": box, "R0": (7.2, 12.0, 4.0, 4.0)}
+    arm = seed_arms(spec, geometry, random.Random(0))[arm_id("C0")]
+    assert arm == joined_box(box, (2.0, 6.0), "below:lo")
+    # R0 lies a wall (0.2 m) right of the arm, facing it along 4 m
+    assert abs(geometry["R0"][0] - (arm[0] + arm[2]) - 0.2) < 1e-9
+    assert min(arm[1] + arm[3], 16.0) - max(arm[1], 12.0) == 4.0
+
+
+def test_seed_arms_keeps_a_wall_from_rooms_in_a_generated_geometry_but_not_from_hints() -> None:
+    """A hint geometry is the original plan's boxes: rooms overlap their neighbours by about
+    a wall, and the arm's place in the plan is among them (against R1 here); a generated
+    geometry keeps rooms a wall apart, so the same place would be a conflict."""
+    spec = _spec()
+    spec = replace(spec, rooms=spec.rooms + (Room("R1", 2, 4, 3, 5, 7, 6, 1, 3, "R", "OFFICE"),))
+    box = (5.0, 8.0, 10.0, 2.0)
+    # R0 meets the box from below; R1 overlaps the place above the box's left end by 0.1 m
+    geometry = {"C0": box, "R0": (9.0, 4.8, 3.0, 3.0), "R1": (6.9, 10.0, 3.0, 6.0)}
+    hinted = seed_arms(spec, geometry, random.Random(0), hints=True)[arm_id("C0")]
+    assert hinted == joined_box(box, (2.0, 6.0), "below:lo"), "the arm lies among the rooms, against R1"
+    generated = seed_arms(spec, geometry, random.Random(0))[arm_id("C0")]
+    for other in ("R0", "R1"):
+        x, y, w, h = geometry[other]
+        assert _room_overlap(generated, (x - 0.2, y - 0.2, w + 0.4, h + 0.4)) == 0.0, f"the arm is closer than a wall to {other}"
+
+
+def test_an_arm_beside_a_box_drawn_small_is_drawn_small_too() -> None:
+    """The generator draws rooms shrunk; an arm seeded at full size beside a shrunk box would
+    take the space the shrinking left. Its sides shrink by the box's scale, to its minimum."""
+    spec = _spec()
+    corridor, _ = spec.rooms
+    (arm,) = spec.arms
+    full = arm_sizes(arm, corridor, (0.0, 0.0, 10.0, 2.0))
+    assert full == [(2.0, 6.0)]
+    (w, h), = arm_sizes(arm, corridor, (0.0, 0.0, 9.0, 1.8))  # 0.9 of the box's target sides
+    assert abs(w - 1.8) < 1e-9 and abs(h - 5.4) < 1e-9
+    (w, h), = arm_sizes(arm, corridor, (0.0, 0.0, 5.0, 1.0))  # half: below the arm's minimum sides
+    assert (w, h) == (1.5, 5.0)
+
+
+def test_an_adjacency_goes_to_the_box_a_wall_away_not_to_one_overlapping_the_neighbour() -> None:
+    spec = _spec()
+    # R0 lies a wall above the corridor's box; the arm (seeded badly) runs through R0
+    geometry = {"C0": (0.0, 0.0, 10.0, 2.0), arm_id("C0"): (3.0, 2.0, 2.0, 6.0), "R0": (2.0, 2.2, 4.0, 4.0)}
+    (adjacency,) = boxes_spec(spec, geometry)[0].adjacencies
+    assert {adjacency.a, adjacency.b} == {"R0", "C0"}
