@@ -23,6 +23,7 @@ from layoutdsl.layout import Layout, SolveInfo, round_layout_number
 from layoutdsl.layout.geometry import layout_from_rects
 from layoutdsl.model import (
     THESIS_AS_WRITTEN,
+    Formulation,
     build_model,
     objective_of_rects,
     rects_from_model,
@@ -148,7 +149,7 @@ def compile_from_start(
 
     t0 = time.monotonic()
     first = _first_feasible_seconds(outcome, method, timings)
-    best, failures = _best_verified(spec, options, candidates, outcome, method, first, began)
+    best, failures = _best_verified(spec, options, candidates, outcome, method, first, began, formulation)
     timings["verify"] = time.monotonic() - t0
     if best is not None:
         timings["total"] = time.monotonic() - began
@@ -187,7 +188,8 @@ def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, R
     candidates = _candidates(model, outcome, polished, rects_start)
     t0 = time.monotonic()
     first = _first_feasible_seconds(outcome, method, timings)
-    best, failures = _best_verified(spec, options, candidates, outcome, method, first, began, model_spec=boxes)
+    best, failures = _best_verified(spec, options, candidates, outcome, method, first, began,
+                                    options.formulation, model_spec=boxes)
     timings["verify"] = time.monotonic() - t0
     timings["total"] = time.monotonic() - began
     if best is not None:
@@ -297,7 +299,8 @@ def _search_whole_model(model, spec: Spec, options: SolveOptions, rects_start: d
     # building it did
     reserve = min(POLISH_SHARE * options.time_limit, timings["build"] + 1.0)
     remaining = max(0.5, deadline - time.monotonic() - reserve)
-    start_objective = objective_of_rects(spec, polished) if polished is not None else None
+    start_objective = (objective_of_rects(spec, polished, formulation=model.formulation)
+                       if polished is not None else None)
     t0 = time.monotonic()
     if options.search or rects_start is None:
         outcome = solve(model, replace(options, time_limit=remaining), progress=progress,
@@ -345,16 +348,18 @@ def _first_feasible_seconds(outcome: SolveOutcome, method: str, timings: dict[st
 
 def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dict[str, Rect], str]],
                    outcome: SolveOutcome, method: str, first: float | None,
-                   began: float, model_spec: Spec | None = None) -> tuple[tuple[float, Layout, str] | None, list]:
+                   began: float, formulation: Formulation,
+                   model_spec: Spec | None = None) -> tuple[tuple[float, Layout, str] | None, list]:
     """(objective, layout, status) of the best candidate that passes verification, or None;
-    and the violations of the candidates that failed. The objective is the model's, of
-    `model_spec` when the model was built on another spec (an L-spec's boxes)."""
+    and the violations of the candidates that failed. The objective is the model's (built
+    with `formulation`), of `model_spec` when the model was built on another spec (an
+    L-spec's boxes)."""
     failures = []
     best: tuple[float, Layout, str] | None = None
     for rects, status in candidates:
         # (5.1) with o chosen per room as the thesis' model may choose it: the best
         # orientation that satisfies (5.4)-(5.6)
-        objective = objective_of_rects(model_spec or spec, rects)
+        objective = objective_of_rects(model_spec or spec, rects, formulation=formulation)
         # a tie (the solver's incumbent is the polished start, up to its tolerances) keeps
         # the earlier candidate, so the layout reports the rule that stopped the solve
         if best is not None and objective >= best[0] - 1e-6 * max(1.0, abs(best[0])):

@@ -20,6 +20,7 @@ from layoutdsl.model.formulation import (
     Bounds,
     ModelData,
     interchangeable_groups,
+    target_area,
 )
 
 Unit = Callable[[pyo.ConcreteModel, ModelData], None]
@@ -286,6 +287,7 @@ def join_l_arms(m: pyo.ConcreteModel, joins: Mapping[tuple[str, str], str],
             flush.append((m.x[box], m.x[arm]) if end == "lo" else (m.x[box] + m.w[box], m.x[arm] + m.w[arm]))
     m.join_l_arms.flush = pyo.Constraint(range(len(flush)), rule=lambda _, i: flush[i][0] == flush[i][1])
     turns = [(box, arm, crosses) for (box, arm), crosses in (crossing or {}).items() if (box, arm) in joins]
+    m.join_l_arms.turns = turns  # (box, arm, crosses): a warm start gives the pair orientations that obey them
     m.join_l_arms.turn = pyo.Constraint(
         range(len(turns)),
         rule=lambda _, i: m.o[turns[i][1]] == (1 - m.o[turns[i][0]] if turns[i][2] else m.o[turns[i][0]]),
@@ -446,12 +448,20 @@ def symmetry_breaking(m: pyo.ConcreteModel, d: ModelData) -> None:
 
 
 def eq5_2_cover(m: pyo.ConcreteModel, d: ModelData) -> None:
-    """(5.2) covered area, bounded-helper form: a <= w*h, a bounded by the size bounds."""
+    """(5.2) covered area, bounded-helper form: a <= w*h, a bounded by the size bounds
+    (and by the target area with Formulation.cover_up_to_target)."""
     lo, hi = d.lo, d.hi
     m.eq5_2_cover = pyo.Block(doc="(5.2) covered area: a <= w*h, a bounded by the size bounds")
     b = m.eq5_2_cover
-    b.area = pyo.Var(m.rooms, bounds=lambda _, r: (lo[r][0] * lo[r][1], min(hi[r][0] * hi[r][1], d.width * d.height)),
-                     doc="a_i, at most the room's area w*h")
+
+    def area_bounds(_, r):
+        most = min(hi[r][0] * hi[r][1], d.width * d.height)
+        if d.formulation.cover_up_to_target:
+            # the target lies within the size bounds, so the lower bound stays below it
+            most = min(most, target_area(d.rooms[r]))
+        return (lo[r][0] * lo[r][1], most)
+
+    b.area = pyo.Var(m.rooms, bounds=area_bounds, doc="a_i, at most the room's area w*h")
     if d.formulation.long_short:
         b.product = pyo.Constraint(m.rooms, rule=lambda _, r: b.area[r] <= m.long[r] * m.short[r])
     else:

@@ -52,3 +52,21 @@ def test_without_the_join_the_planted_l_has_no_polish() -> None:
     model = build_model(boxes)
     warm_start_from_rects(model, boxes, rects)
     assert polish(model, SolveOptions(time_limit=20, quiet=True)).status == "infeasible"
+
+
+def test_a_square_arm_starts_turned_with_its_box() -> None:
+    """A 3 x 3 arm fits both orientations and its size error does not choose; the start
+    must give it the orientation the turn asks (across its 6 x 2 box), else the start and
+    every polish that fixes its binaries are infeasible."""
+    from spec_cases import room, spec
+
+    pair = spec("square-arm", [room("A", (4, 8, 6), (1.5, 3, 2), ar=(1, 5), rtype="C"),
+                               room("R", (2, 4, 3), (2, 4, 3.5), ar=(1, 1.5))], 10, 8)
+    model = build_model(pair, joins={("A", "R"): "below:lo"}, crossing={("A", "R"): True})
+    start = {"A": (0.0, 0.0, 6.0, 2.0), "R": (0.0, 2.0, 3.0, 3.0)}
+    warm_start_from_rects(model, pair, start)  # (it reports the joined pair's missing wall)
+    assert (model.o["A"].value, model.o["R"].value) == (0, 1)
+    assert polish(model, SolveOptions(time_limit=20, quiet=True)).has_solution
+    box, arm = rects_from_model(model)["A"], rects_from_model(model)["R"]
+    assert box[0] == pytest.approx(arm[0], abs=1e-6) and box[1] + box[3] == pytest.approx(arm[1], abs=1e-6)
+    assert box[2] >= box[3] and arm[3] >= arm[2] - 1e-6  # the arm runs across its box

@@ -72,3 +72,20 @@ def test_a_rejected_start_offered_to_one_scip_model_many_times_is_dropped_not_st
         scip_model.freeTransform()
         assert _add_start(interface, scip_model, model, False, partial_fallback=False) is False
     scip_model.freeProb()
+
+
+def test_a_neighbourhood_takes_the_rooms_across_a_rooms_walls_before_nearer_centres():
+    from layoutdsl.solve import _nearest_rooms
+
+    # K a 20 m corridor; A touches its left end from above, B's centre is nearer K's centre
+    # but 3.5 m clear of it
+    corridor = spec("corridor", [room("K", (10, 20, 20), (2, 3, 2), rtype="C"), room("A", (3, 4, 3), (3, 4, 3)),
+                                 room("B", (3, 4, 3), (3, 4, 3))], 22, 10)
+    model = build_model(corridor)
+    for r, (x, y, w, h) in {"K": (0, 0, 20, 2), "A": (0, 2.2, 3, 3), "B": (8.5, 5.5, 3, 3)}.items():
+        model.x[r].set_value(x)
+        model.y[r].set_value(y)
+        model.w[r].set_value(w)
+        model.h[r].set_value(h)
+    assert _nearest_rooms(model, "K", 2) == {"K", "A"}
+    assert _nearest_rooms(model, "K", 3) == {"K", "A", "B"}

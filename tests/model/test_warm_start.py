@@ -1,0 +1,36 @@
+"""warm_start_from_rects: which relation a start hands the model for a pair apart on both axes."""
+
+from __future__ import annotations
+
+import pytest
+
+from layoutdsl.layout.geometry import layout_from_rects
+from layoutdsl.layout.verify import verify
+from layoutdsl.model import build_model, rects_from_model, relations_of_rects, warm_start_from_rects
+from layoutdsl.solve import SolveOptions, polish
+
+from spec_cases import room, spec
+
+# Two 3 x 3 rooms that want to be 6 wide, 1 m apart along x and 5 m along y: side by side
+# they cannot both reach 6 in a 10 m boundary, one above the other they can.
+PAIR = spec("pair", [room("A", (3, 8, 6), (3, 4, 3)), room("B", (3, 8, 6), (3, 4, 3))], 10, 14)
+START = {"A": (0.0, 0.0, 3.0, 3.0), "B": (4.0, 8.0, 3.0, 3.0)}
+
+
+def test_a_diagonal_pair_keeps_the_relation_with_the_wider_gap():
+    model = build_model(PAIR)
+    assert warm_start_from_rects(model, PAIR, START) == []
+    chosen = [s for s in ("left", "right", "below", "above") if model.eq5_8_non_overlap.side["A", "B", s].value == 1]
+    assert chosen == ["below"]
+    assert relations_of_rects(PAIR, START) == {("A", "B"): "below"}
+
+
+def test_the_polish_then_grows_both_rooms_to_their_targets():
+    model = build_model(PAIR)
+    warm_start_from_rects(model, PAIR, START)
+    assert polish(model, SolveOptions(time_limit=10, quiet=True)).has_solution
+    rects = rects_from_model(model)
+    for r in ("A", "B"):
+        _x, _y, w, h = rects[r]
+        assert (max(w, h), min(w, h)) == (pytest.approx(6, abs=1e-3), pytest.approx(3, abs=1e-3)), rects[r]
+    assert verify(PAIR, layout_from_rects(PAIR, rects)) == []
