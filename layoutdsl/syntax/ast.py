@@ -222,7 +222,9 @@ class Settings:
     """
 
     lambda_cover: float = 0.1
-    """λ_cover (5.1); the thesis found 0.1-0.2 keeps the generated area near the original (§6.1.1)."""
+    """λ_cover (5.1). The default formulation counts a room's area only up to its target
+    (model.Formulation.cover_up_to_target); with the thesis' term as written, the thesis
+    found 0.1-0.2 keeps the generated area near the original (§6.1.1)."""
     lambda_error: float = 1.0
     """λ_error (5.1)."""
     walldim: float = 0.2
