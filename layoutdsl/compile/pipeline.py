@@ -41,6 +41,7 @@ from layoutdsl.solve import (
 )
 from layoutdsl.layout.geometry import Rect
 from layoutdsl.layout.verify import verify
+from layoutdsl.solve.isolated import SOLVER_CRASHED, solve_isolated
 
 StartProvider = Callable[[Spec, SolveOptions], "dict[str, Rect] | None"]
 """start_provider(spec, options) -> rectangles satisfying every hard constraint, or None.
@@ -303,8 +304,10 @@ def _search_whole_model(model, spec: Spec, options: SolveOptions, rects_start: d
                        if polished is not None else None)
     t0 = time.monotonic()
     if options.search or rects_start is None:
-        outcome = solve(model, replace(options, time_limit=remaining), progress=progress,
-                        warm_start=rects_start is not None)
+        # in a child process: SCIP aborting deep in a long search (it does, natively, on
+        # some L-room models) then costs the search, not the layout already in hand
+        outcome = solve_isolated(model, replace(options, time_limit=remaining), progress=progress,
+                                 warm_start=rects_start is not None)
     else:
         outcome = SolveOutcome(status="construction", has_solution=False)
     timings["solve"] = time.monotonic() - t0
@@ -329,10 +332,12 @@ def _candidates(model, outcome: SolveOutcome, polished: dict[str, Rect] | None,
     candidates: list[tuple[dict[str, Rect], str]] = []
     if outcome.has_solution:
         candidates.append((rects_from_model(model), outcome.status))
+    # a start that stands because the solver's search died says so
+    own = SOLVER_CRASHED if outcome.status == SOLVER_CRASHED else "construction"
     if polished is not None:
-        candidates.append((polished, "construction"))
+        candidates.append((polished, own))
     if rects_start is not None:
-        candidates.append((rects_start, "construction"))
+        candidates.append((rects_start, own))
     return candidates
 
 

@@ -193,7 +193,8 @@ class SolveInfo:
     """How the layout was found. Timing fields are the only run-to-run difference."""
 
     status: str
-    """'optimal', 'gap_limit', 'time_limit', 'node_limit', 'solution_limit' or 'construction'."""
+    """'optimal', 'gap_limit', 'time_limit', 'node_limit', 'solution_limit', 'construction' or
+    'solver_crashed' (the search died natively; the layout is the verified start it had)."""
     objective: float | None = None
     """(5.1) recomputed from the placed rooms, not SCIP's figure."""
     bound: float | None = None

@@ -1,0 +1,93 @@
+"""A long SCIP search in a child process, so a crash inside SCIP costs the search, not the compile.
+
+SCIP 10 (through PySCIPOpt 6) aborts now and then deep into a long branch-and-bound on
+L-room models: `free(): invalid size`, SIGABRT, the whole Python process gone with the
+verified layout it already had (measured: office_324-Elm-Furn-Plan imported with its
+L-rooms, compile seed 0, after about 55 s of search, every run). The search is an
+improvement on a layout the compile already holds, so it runs in a forked child: the
+child sends its outcome and the variables' values back through a pipe; when it dies
+instead, the parent gets a 'solver_crashed' outcome without a solution and keeps what it had.
+
+Forking is safe only while the process has no other thread (a lock another thread holds
+stays held in the child); otherwise, and where there is no fork (Windows), the search runs
+in this process as before. The progress callback runs in the child: lines it prints reach
+the same stderr; state it keeps stays in the child.
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import signal
+import threading
+import time
+
+import pyomo.environ as pyo
+
+from layoutdsl.solve import ProgressCallback, SolveOptions, SolveOutcome, solve
+
+SOLVER_CRASHED = "solver_crashed"
+"""The status of a search whose child process died (SCIP aborted or was killed)."""
+
+
+def can_isolate() -> bool:
+    """Whether a search can run in a forked child here (fork exists, no other thread runs)."""
+    return hasattr(os, "fork") and threading.active_count() == 1
+
+
+def solve_isolated(
+    model: pyo.ConcreteModel,
+    options: SolveOptions,
+    *,
+    progress: ProgressCallback | None = None,
+    warm_start: bool = False,
+) -> SolveOutcome:
+    """`solve(model, options, ...)` in a forked child; the best solution is loaded on the model.
+
+    Returns an outcome with status SOLVER_CRASHED (and no solution) when the child dies.
+    """
+    if not can_isolate():
+        return solve(model, options, progress=progress, warm_start=warm_start)
+    variables = list(model.component_data_objects(pyo.Var, descend_into=True))
+    started = time.monotonic()
+    read_end, write_end = os.pipe()
+    pid = os.fork()
+    if pid == 0:  # the child: solve, send, and leave without running the parent's cleanup
+        os.close(read_end)
+        code = 0
+        try:
+            outcome = solve(model, options, progress=progress, warm_start=warm_start)
+            values = [v.value for v in variables] if outcome.has_solution else None
+            message = pickle.dumps(("done", outcome, values))
+        except KeyboardInterrupt:
+            message = pickle.dumps(("interrupted", None, None))
+        except BaseException as error:  # noqa: BLE001  (re-raised in the parent)
+            message = pickle.dumps(("error", repr(error), None))
+        try:
+            with os.fdopen(write_end, "wb") as pipe:
+                pipe.write(message)
+        except BaseException:  # noqa: BLE001
+            code = 1
+        os._exit(code)
+    os.close(write_end)
+    try:
+        with os.fdopen(read_end, "rb") as pipe:
+            data = pipe.read()
+    except KeyboardInterrupt:
+        os.kill(pid, signal.SIGKILL)
+        os.waitpid(pid, 0)
+        raise
+    os.waitpid(pid, 0)
+    try:
+        kind, outcome, values = pickle.loads(data)
+    except Exception:  # noqa: BLE001  (nothing or a torn message: the child died)
+        return SolveOutcome(status=SOLVER_CRASHED, has_solution=False,
+                            seconds=time.monotonic() - started)
+    if kind == "interrupted":
+        raise KeyboardInterrupt
+    if kind == "error":
+        raise RuntimeError(f"the solver's child process failed: {outcome}")
+    if values is not None:
+        for variable, value in zip(variables, values):
+            variable.set_value(value, skip_validation=True)
+    return outcome
