@@ -1,62 +1,90 @@
-"""solve/isolated.py: the long search in a child process survives a native crash of SCIP."""
+"""solve/isolated.py: the long search in a child process survives a native crash of SCIP.
+
+Each case runs in a fresh interpreter: forking needs a process without other threads, and
+earlier tests in this one (the Dask cluster's) may leave some behind.
+"""
 
 from __future__ import annotations
 
-import faulthandler
+import json
 import os
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
 
-import pyomo.environ as pyo
 import pytest
 
+pytestmark = pytest.mark.skipif(not hasattr(os, "fork"), reason="no fork on this platform")
+
+TESTS = Path(__file__).resolve().parents[1]
+
+PRELUDE = """
+import faulthandler, json, os
+import pyomo.environ as pyo
 from layoutdsl.compile import compile_spec
 from layoutdsl.layout.verify import verify
 from layoutdsl.model import build_model
 from layoutdsl.solve import SolveOptions, solve
 from layoutdsl.solve import isolated
-from layoutdsl.solve.isolated import SOLVER_CRASHED, can_isolate, solve_isolated
-
+from layoutdsl.solve.isolated import can_isolate, solve_isolated
 from planted import planted
-
-pytestmark = pytest.mark.skipif(not can_isolate(), reason="no fork here, or other threads run")
 
 OPTIONS = SolveOptions(time_limit=20, node_limit=200, quiet=True)
 
+def values(model):
+    return [v.value for v in model.component_data_objects(pyo.Var, descend_into=True)]
 
-def _abort(*args, **kwargs):
-    """What a native SCIP abort does to the child (without the test runner's traceback dump)."""
+def abort(*args, **kwargs):
+    # what a native SCIP abort does to the child: SIGABRT, nothing sent back
     faulthandler.disable()
     os.abort()
 
+assert can_isolate()
+"""
 
-def _values(model) -> list:
-    return [v.value for v in model.component_data_objects(pyo.Var, descend_into=True)]
+
+def run_case(body: str) -> dict:
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(TESTS), os.environ.get("PYTHONPATH", "")])}
+    done = subprocess.run([sys.executable, "-c", PRELUDE + textwrap.dedent(body)], capture_output=True,
+                          text=True, env=env, timeout=120)
+    assert done.returncode == 0, done.stderr
+    return json.loads(done.stdout.strip().splitlines()[-1])
 
 
 def test_a_search_in_a_child_loads_what_the_same_search_in_process_finds():
-    spec, _ = planted(2, 1)
-    here, there = build_model(spec), build_model(spec)
-    outcome_here = solve(here, OPTIONS)
-    outcome_there = solve_isolated(there, OPTIONS)
-    assert outcome_there.has_solution and outcome_there.status == outcome_here.status
-    assert outcome_there.objective == pytest.approx(outcome_here.objective)
+    result = run_case("""
+        spec, _ = planted(2, 1)
+        here, there = build_model(spec), build_model(spec)
+        a, b = solve(here, OPTIONS), solve_isolated(there, OPTIONS)
+        print(json.dumps({"status": [a.status, b.status], "objective": [a.objective, b.objective],
+                          "has": b.has_solution, "values": [values(here), values(there)]}))
+    """)
+    assert result["has"] and result["status"][0] == result["status"][1]
+    assert result["objective"][1] == pytest.approx(result["objective"][0])
     # the child's solution is on the parent's model, variable for variable
-    assert _values(there) == pytest.approx(_values(here))
+    assert result["values"][1] == pytest.approx(result["values"][0])
 
 
-def test_a_child_that_aborts_gives_a_crashed_outcome_and_leaves_the_model_as_it_was(monkeypatch):
-    spec, _ = planted(2, 1)
-    model = build_model(spec)
-    before = _values(model)
-    # the child dies as SCIP does when it aborts natively: SIGABRT, nothing sent back
-    monkeypatch.setattr(isolated, "solve", _abort)
-    outcome = solve_isolated(model, OPTIONS)
-    assert outcome.status == SOLVER_CRASHED and not outcome.has_solution
-    assert _values(model) == before
+def test_a_child_that_aborts_gives_a_crashed_outcome_and_leaves_the_model_as_it_was():
+    result = run_case("""
+        spec, _ = planted(2, 1)
+        model = build_model(spec)
+        before = values(model)
+        isolated.solve = abort
+        outcome = solve_isolated(model, OPTIONS)
+        print(json.dumps({"status": outcome.status, "has": outcome.has_solution,
+                          "unchanged": values(model) == before}))
+    """)
+    assert result == {"status": "solver_crashed", "has": False, "unchanged": True}
 
 
-def test_a_compile_whose_search_aborts_writes_its_verified_start_and_says_so(monkeypatch):
-    spec, _ = planted(3, 1)
-    monkeypatch.setattr(isolated, "solve", _abort)
-    result = compile_spec(spec, SolveOptions(time_limit=20, quiet=True))
-    assert result.layout is not None and verify(spec, result.layout) == []
-    assert result.layout.solve.status == SOLVER_CRASHED
+def test_a_compile_whose_search_aborts_writes_its_verified_start_and_says_so():
+    result = run_case("""
+        spec, _ = planted(3, 1)
+        isolated.solve = abort
+        result = compile_spec(spec, SolveOptions(time_limit=20, quiet=True))
+        print(json.dumps({"verified": result.layout is not None and verify(spec, result.layout) == [],
+                          "status": result.layout.solve.status if result.layout else None}))
+    """)
+    assert result == {"verified": True, "status": "solver_crashed"}
