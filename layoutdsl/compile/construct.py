@@ -37,7 +37,7 @@ from collections.abc import Mapping
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
 from layoutdsl.compile import lshape
-from layoutdsl.compile.generate import RoomSizes, cycle_blocks, drawn_sides, generate_geometry
+from layoutdsl.compile.generate import RoomSizes, cycle_blocks, drawn_sides, generate_geometry, room_graph
 from layoutdsl.compile.ladders import find_ladder, ladder_template
 from layoutdsl.syntax.ast import Room, Spec
 
@@ -961,7 +961,8 @@ def block_templates(spec: Spec, seed: int, deadline: float,
     total = sum(len(b) for b in blocks)
     templates = []
     solved: dict[str, Rect] = {}
-    lengths = {room_id: long_side for room_id, (long_side, _) in drawn_sides(spec).items()}
+    sides = drawn_sides(spec)
+    lengths = {room_id: long_side for room_id, (long_side, _) in sides.items()}
     while todo:
         block, parts = todo.pop(0)
         left = budget_end - time.monotonic()
@@ -982,7 +983,7 @@ def block_templates(spec: Spec, seed: int, deadline: float,
         alone = _with_long_sides(alone, {r: v for r, v in lengths.items() if r not in rungs})
         rects = construct_start(_with_shapes(alone, shared), seed=seed,
                                 use_hints=False, deadline=time.monotonic() + share,
-                                hanging=_hanging_areas(spec, block, hanging or {}))
+                                hanging=_hanging_areas(spec, block, hanging or {}, sides))
         _debug(f"block of {len(block)} rooms: {'solved' if rects else 'not solved'}")
         if rects is None and len(parts) > 1:
             todo[:0] = [(part, [part]) for part in parts]
@@ -1001,8 +1002,10 @@ JOINED_MAX_ROOMS = 24
 blocks would join into one of 54 rooms, as hard to solve as a whole plan."""
 
 
-def _hanging_areas(spec: Spec, part: frozenset[str], outer: Mapping[str, float]) -> dict[str, float]:
-    """Room of `part` -> drawn area of the rooms outside it that hang off that room.
+def _hanging_areas(spec: Spec, part: frozenset[str], outer: Mapping[str, float],
+                   sides: Mapping[str, tuple[float, float]]) -> dict[str, float]:
+    """Room of `part` -> drawn area (`sides`: generate.drawn_sides of the spec) of the
+    rooms outside it that hang off that room.
 
     A cycle block meets the rest of the graph only at its cut rooms, so each connected
     piece of the rest hangs off exactly one room of the block. `outer`: the same for the
@@ -1010,10 +1013,7 @@ def _hanging_areas(spec: Spec, part: frozenset[str], outer: Mapping[str, float])
     """
     import networkx as nx
 
-    sides = drawn_sides(spec)
-    graph = nx.Graph()
-    graph.add_nodes_from(room.id for room in spec.rooms)
-    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
+    graph = room_graph(spec)
     hanging = {room_id: outer.get(room_id, 0.0) for room_id in part}
     for piece in nx.connected_components(graph.subgraph(set(graph) - part)):
         roots = {n for r in piece for n in graph[r] if n in part}
@@ -1203,9 +1203,7 @@ def construct_geometry(spec: Spec, rng: random.Random) -> dict[str, Rect]:
 
     boundary = spec.boundary
     assert boundary is not None
-    graph = nx.Graph()
-    graph.add_nodes_from(room.id for room in spec.rooms)
-    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
+    graph = room_graph(spec)
     fixed_points = {p.room: (p.x, p.y) for p in spec.positions}
     for c in spec.connections:
         fixed_points.setdefault(c.room, ((c.x1 + c.x2) / 2, (c.y1 + c.y2) / 2))

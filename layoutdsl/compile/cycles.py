@@ -22,6 +22,7 @@ from dataclasses import replace
 import networkx as nx
 
 from layoutdsl.compile import explain
+from layoutdsl.compile.generate import room_graph
 from layoutdsl.compile.pipeline import compile_from_start
 from layoutdsl.syntax.ast import Cluster, ClusterMember, Spec
 
@@ -29,14 +30,6 @@ DEFAULT_SUB_SHARE = 0.4
 """Share of the remaining time a cycle's sub-problem may use."""
 
 CHOICES = ("longest", "shortest")
-
-
-def room_graph(spec: Spec) -> nx.Graph:
-    """The spec's rooms as nodes, its adjacencies as edges."""
-    graph = nx.Graph()
-    graph.add_nodes_from(room.id for room in spec.rooms)
-    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
-    return graph
 
 
 def cycle_rank(spec: Spec) -> int:

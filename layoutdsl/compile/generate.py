@@ -504,14 +504,19 @@ def _centre_in_boundary(geometry: dict[str, Rect], placement: _Placement, width:
             geometry[room_id] = (x + dx, y + dy, w, h)
 
 
+def room_graph(spec: Spec) -> nx.Graph:
+    """The spec's rooms as nodes (in the spec's order), its adjacencies as edges."""
+    graph = nx.Graph()
+    graph.add_nodes_from(room.id for room in spec.rooms)
+    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
+    return graph
+
+
 def cycle_blocks(spec: Spec) -> list[frozenset[str]]:
     """The parts of the room graph where rooms close cycles: its biconnected components of
     three rooms or more, largest first. In real plans they are small (at most 27 of 105
     rooms, mostly 3-11) while the rest of the graph is trees hanging off them."""
-    graph = nx.Graph()
-    graph.add_nodes_from(room.id for room in spec.rooms)
-    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
-    blocks = [frozenset(b) for b in nx.biconnected_components(graph) if len(b) >= 3]
+    blocks = [frozenset(b) for b in nx.biconnected_components(room_graph(spec)) if len(b) >= 3]
     return sorted(blocks, key=lambda b: (-len(b), sorted(b)))
 
 

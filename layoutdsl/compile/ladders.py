@@ -21,9 +21,7 @@ import random
 from collections.abc import Mapping
 from itertools import combinations
 
-import networkx as nx
-
-from layoutdsl.compile.generate import RoomSizes
+from layoutdsl.compile.generate import RoomSizes, room_graph
 from layoutdsl.layout.geometry import Rect
 from layoutdsl.syntax.ast import Spec
 
@@ -40,9 +38,7 @@ SPACING_ROOMS = 1.0
 def find_ladder(spec: Spec) -> tuple[str, str, list[str]] | None:
     """(rail, rail, rungs): the two corridors without a shared door with the most common
     neighbours (at least MIN_RUNGS), or None."""
-    graph = nx.Graph()
-    graph.add_nodes_from(spec.room_ids)
-    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
+    graph = room_graph(spec)
     best = None
     corridors = sorted(room.id for room in spec.rooms if room.is_corridor)
     for a, b in combinations(corridors, 2):

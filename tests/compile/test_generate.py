@@ -360,9 +360,9 @@ def test_rooms_hanging_off_a_rung_get_the_space_beside_it():
     spec = ladder_spec()
     (block,) = cycle_blocks(spec)
     ring = block_spec(spec, block)
-    hanging = _hanging_areas(spec, block, {})
-    # the office on each rung is all that hangs off the ladder: its drawn area, on its rung
     sides = drawn_sides(spec)
+    hanging = _hanging_areas(spec, block, {}, sides)
+    # the office on each rung is all that hangs off the ladder: its drawn area, on its rung
     assert hanging == pytest.approx({**{r: 0.0 for r in block},
                                      **{f"K{i}": sides[f"R{i}"][0] * sides[f"R{i}"][1] for i in range(3)}})
     for seed in range(4):
