@@ -172,8 +172,7 @@ def box_distance(a: Rect, b: Rect) -> float:
     neighbour the one sharing more wall wins."""
     ax, ay, aw, ah = a
     bx, by, bw, bh = b
-    gap_x = max(bx - ax - aw, ax - bx - bw)
-    gap_y = max(by - ay - ah, ay - by - bh)
+    gap_x, gap_y = _gaps(a, b)
     facing = min(ax + aw, bx + bw) - max(ax, bx) if gap_y >= gap_x else min(ay + ah, by + bh) - max(ay, by)
     return max(gap_x, gap_y) - 0.01 * max(0.0, facing)
 

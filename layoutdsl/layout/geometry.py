@@ -8,7 +8,7 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from layoutdsl.layout import Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
+from layoutdsl.layout import WELD, Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
 from layoutdsl.syntax.ast import Spec, arm_id
 
 Rect = tuple[float, float, float, float]
@@ -22,14 +22,10 @@ OPPOSITE_SIDE = {"left": "right", "right": "left", "below": "above", "above": "b
 """The side b is on when a is on `side` of it."""
 
 
-WELD = 1e-6
-"""Metres within which an arm's edge is moved onto its box's edge line (the verifier's
-tolerance): the solver joins the two only to its tolerance, and an L whose edges miss
-each other by a nanometre would have a sliver of outline between its arms."""
-
-
 def _welded_arm(box: Rect, arm: Rect) -> Rect:
-    """The arm with each edge within WELD of one of the box's edge lines moved onto it."""
+    """The arm with each edge within WELD of one of the box's edge lines moved onto it: the
+    solver joins the two only to its tolerance, and an L whose edges miss each other by a
+    nanometre would have a sliver of outline between its arms."""
     bx, by, bw, bh = box
     ax, ay, aw, ah = arm
     lines_x, lines_y = (bx, round_layout_number(bx + bw)), (by, round_layout_number(by + bh))
