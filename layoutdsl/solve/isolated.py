@@ -62,7 +62,10 @@ def solve_isolated(
         except KeyboardInterrupt:
             message = pickle.dumps(("interrupted", None, None))
         except BaseException as error:  # noqa: BLE001  (re-raised in the parent)
-            message = pickle.dumps(("error", repr(error), None))
+            try:
+                message = pickle.dumps(("error", error, None))
+            except Exception:  # noqa: BLE001  (an error that does not pickle: its text)
+                message = pickle.dumps(("error", RuntimeError(f"the solver's child process failed: {error!r}"), None))
         try:
             with os.fdopen(write_end, "wb") as pipe:
                 pipe.write(message)
@@ -86,7 +89,7 @@ def solve_isolated(
     if kind == "interrupted":
         raise KeyboardInterrupt
     if kind == "error":
-        raise RuntimeError(f"the solver's child process failed: {outcome}")
+        raise outcome  # as the search in this process would have raised it
     if values is not None:
         for variable, value in zip(variables, values):
             variable.set_value(value, skip_validation=True)

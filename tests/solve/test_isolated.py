@@ -79,6 +79,19 @@ def test_a_child_that_aborts_gives_a_crashed_outcome_and_leaves_the_model_as_it_
     assert result == {"status": "solver_crashed", "has": False, "unchanged": True}
 
 
+def test_an_error_in_the_child_is_raised_in_the_parent_as_it_was():
+    result = run_case("""
+        def refuse(*args, **kwargs):
+            raise ValueError("unknown emphasis 'fast'")
+        isolated.solve = refuse
+        try:
+            solve_isolated(build_model(planted(2, 1)[0]), OPTIONS)
+        except ValueError as error:
+            print(json.dumps({"raised": type(error).__name__, "message": str(error)}))
+    """)
+    assert result == {"raised": "ValueError", "message": "unknown emphasis 'fast'"}
+
+
 def test_a_compile_whose_search_aborts_writes_its_verified_start_and_says_so():
     result = run_case("""
         spec, _ = planted(3, 1)
