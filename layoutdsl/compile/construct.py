@@ -264,9 +264,155 @@ def _solve_model(
     total stretch and SCIP stops as soon as it reaches zero. mode "final": the same, but a
     stretch costs so much that only the linear deviation of the sizes from their targets is
     left to minimise (elastic rather than hard, so SCIP's tolerances cannot make it fail).
+
+    Pairs of rooms far apart in the round's starting rectangles (`start`, else `geometry`)
+    enter the model only once a solution brings them closer than their relation allows
+    (`_near_options`); the model is then solved again, from that solution.
     """
     if mode not in ("repair", "final"):
         raise ValueError(f"unknown mode {mode!r}")
+    deadline = time.monotonic() + seconds
+    current = start.rects if start is not None else geometry
+    # a repair round keeps each room near where it starts; the final LP (relations fixed)
+    # may move rooms as far as their sizes need
+    reaches = _reaches(current, start) if mode == "repair" else None
+    active = _near_options(problem, current, options, reaches)
+    while True:
+        outcome = _solve_active(problem, active, mode=mode, seconds=max(0.05, deadline - time.monotonic()),
+                                seed=seed, orientations=orientations, turnable=turnable, start=start,
+                                feasibility_emphasis=feasibility_emphasis, within=(current, reaches))
+        if outcome is None:
+            return None
+        entering = {pair: allowed for pair, allowed in options.items()
+                    if pair not in active
+                    and _least_stretch(problem, outcome.rects, pair, allowed)[1] > LAZY_TOLERANCE}
+        if not entering or deadline - time.monotonic() <= 0.05:
+            return _completed(problem, outcome, options, active)
+        _debug(f"    {len(entering)} far pairs enter the model")
+        start = _completed(problem, outcome, options, active)
+        active.update(entering)
+
+
+REACH_M = 3.5
+"""Metres each side of a room's box may move in one repair round (`_add_reach`), plus
+REACH_PER_STRETCH of the previous round's largest stretch; a room whose sides differ by
+more than twice that cannot turn in the round. Measured with construct_start (45 s, seeds
+0-3, the machine's two cores busy): office_OfficePlan constructs for 4 of 4 seeds (12, 38,
+4.6 and 25 s) against 0 of 4 with rooms free to go anywhere, where a round's MIP carries
+rooms across the plan to cut the stretch and the next round starts further from a layout;
+school_stjoseph_scatholichighschool with hints and L-rooms constructs in 4-9 s (none in
+60 s before). A fixed 3.5 m without the stretch term did as well on office_OfficePlan but
+slowed school_wilbraham's variants (mean 7.0 s against 4.2 s over 30 seeds): conflicts of
+generated geometries need longer moves."""
+
+REACH_PER_STRETCH = 0.5
+
+LAZY_RADIUS = 8.0
+"""Metres apart (along their clearer axis) beyond which a pair of rooms that share no
+door starts outside a round's model, at least: further when the rooms' reach needs it.
+On school_stjoseph_scatholichighschool (113 boxes with the L-rooms' arms, 6328 pairs) a
+round's model then holds about 600-800 pairs, and SCIP's rounds run several times faster."""
+
+LAZY_MARGIN = 0.5
+"""Metres added to the two rooms' reaches and the wall thickness for the radius."""
+
+LAZY_TOLERANCE = 1e-9
+"""Metres a far pair may violate its relation by before it enters the model."""
+
+
+def _reaches(rects: dict[str, Rect], start: _Outcome | None) -> dict[str, float]:
+    """Room id -> metres each side of its box may move this round (REACH_M, plus
+    REACH_PER_STRETCH of the previous round's largest stretch)."""
+    reach = REACH_M
+    if start is not None:
+        reach += REACH_PER_STRETCH * max(start.stretched.values(), default=0.0)
+    return dict.fromkeys(rects, reach)
+
+
+def _add_reach(model, boxes: dict[str, _Box], rects: dict[str, Rect],
+               reaches: dict[str, float]) -> None:
+    """Each side of each room's box within its reach of where it is in `rects`.
+
+    Two rooms further apart than their reaches and a wall cannot then collide, which is
+    what lets `_near_options` leave them out of the model. (Both ways, not only outwards:
+    measured, rooms that may also shrink freely made office_OfficePlan construct for 2 of 4
+    seeds instead of 4.)"""
+    for room_id, (x, y, w, h) in rects.items():
+        box, reach = boxes.get(room_id), reaches.get(room_id)
+        if box is None or reach is None:
+            continue
+        for side, at in ((box.x, x), (box.y, y), (box.x + box.w, x + w), (box.y + box.h, y + h)):
+            model.addCons(side >= at - reach)
+            model.addCons(side <= at + reach)
+
+
+def _near_options(problem: _Problem, rects: dict[str, Rect], options: dict[Pair, tuple[str, ...]],
+                  reaches: dict[str, float] | None) -> dict[Pair, tuple[str, ...]]:
+    """The options of the pairs a round's model starts with: every door and every L's two
+    boxes, and the pairs near each other in `rects` (LAZY_RADIUS, or their reaches)."""
+    def radius(pair: Pair) -> float:
+        if reaches is None:
+            return LAZY_RADIUS
+        reach = sum(reaches.get(thing, 0.0) for thing in pair)
+        return max(LAZY_RADIUS, reach + problem.walldim + LAZY_MARGIN)
+
+    return {
+        pair: allowed for pair, allowed in options.items()
+        if frozenset(pair) in problem.walls or pair in problem.joins
+        or problem.distance(rects, pair) <= radius(pair)
+    }
+
+
+def _least_stretch(problem: _Problem, rects: dict[str, Rect], pair: Pair,
+                   allowed: tuple[str, ...]) -> tuple[str, float]:
+    """(direction, metres) of the allowed direction the pair's rooms (not sharing a door,
+    not one L) violate least in `rects`, and by how much (0: satisfied, with SAFETY)."""
+    a, b = (problem.rect(rects, thing) for thing in pair)
+    gap = problem.walldim + (0.0 if frozenset(pair) in problem.exact_walls else SAFETY)
+    needs = {
+        "left": a[0] + a[2] + gap - b[0],
+        "right": b[0] + b[2] + gap - a[0],
+        "below": a[1] + a[3] + gap - b[1],
+        "above": b[1] + b[3] + gap - a[1],
+    }
+    direction = min(allowed, key=lambda d: needs[d])
+    return direction, max(0.0, needs[direction])
+
+
+def _completed(problem: _Problem, outcome: _Outcome, options: dict[Pair, tuple[str, ...]],
+               active: dict[Pair, tuple[str, ...]]) -> _Outcome:
+    """The outcome with the pairs left out of its model (not in `active`): each in its
+    least-violated direction and stretched by what it violates (zero once no far pair
+    does), with that stretch as its value for warm-starting a model it enters."""
+    chosen = dict(outcome.chosen)
+    stretched = dict(outcome.stretched)
+    values = dict(outcome.values)
+    for pair, allowed in options.items():
+        if pair in active:
+            continue
+        direction, need = _least_stretch(problem, outcome.rects, pair, allowed)
+        chosen[pair] = direction
+        if need > LAZY_TOLERANCE:
+            stretched[pair] = need
+            values[f"s_{pair[0]}_{pair[1]}"] = need
+    return replace(outcome, chosen=chosen, stretched=stretched, values=values)
+
+
+def _solve_active(
+    problem: _Problem,
+    options: dict[Pair, tuple[str, ...]],
+    *,
+    mode: str,
+    seconds: float,
+    seed: int,
+    orientations: dict[str, bool],
+    turnable: frozenset[str],
+    start: _Outcome | None,
+    feasibility_emphasis: bool,
+    within: tuple[dict[str, Rect], dict[str, float] | None],
+) -> _Outcome | None:
+    """One SCIP solve of the model with the pairs of `options`, each room within its reach
+    of its rectangle (`within`: rectangles, reaches; None: anywhere); see _solve_model."""
     repair = mode == "repair"
     from pyscipopt import quicksum
 
@@ -274,6 +420,8 @@ def _solve_model(
     # points, clusters, pairs): SCIP's search, and so the layout, depends on that order
     model = _scip_model(repair, seconds, seed, feasibility_emphasis)
     rooms = _add_rooms(model, problem, orientations, turnable, with_deviation=not repair)
+    if within[1] is not None:
+        _add_reach(model, rooms.boxes, *within)
     _add_on_boundary(model, problem, rooms.boxes)
     _add_covered_points(model, problem.spec, rooms.boxes)
     _add_clusters(model, problem, rooms.boxes)
@@ -289,7 +437,8 @@ def _solve_model(
     model.optimize()
     status = model.getStatus()
     _debug(f"    {mode} model: {status} in "
-           f"{model.getSolvingTime():.2f}s, {len(pairs.binaries)} free pairs, {model.getNSols()} sols")
+           f"{model.getSolvingTime():.2f}s, {len(options)} pairs, {len(pairs.binaries)} free, "
+           f"{model.getNSols()} sols")
     if model.getNSols() == 0:
         return None
     return _read_outcome(model, problem.spec, options, rooms, pairs, orientations)

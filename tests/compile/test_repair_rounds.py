@@ -1,0 +1,66 @@
+"""One round of the construction's repair: rooms stay within their reach, and pairs of rooms
+left out of the model for being far apart enter it when a solution needs them."""
+
+from __future__ import annotations
+
+from layoutdsl.compile import construct
+from layoutdsl.syntax.ast import Boundary, Spec
+
+from _specs import room, tree_spec
+
+
+def _orientations(geometry):
+    return {room_id: w >= h for room_id, (_x, _y, w, h) in geometry.items()}
+
+
+def test_a_repair_round_keeps_every_room_within_its_reach():
+    spec = tree_spec()
+    # every room drawn at one spot: the round must pull them apart, and may not pull any
+    # room side further than REACH_M from where it was drawn
+    geometry = {r.id: (8.0 + 0.3 * i, 6.0 + 0.2 * i, r.target_w, r.target_h) for i, r in enumerate(spec.rooms)}
+    problem = construct._Problem.of(spec)
+    options = construct._first_options(problem, geometry, free_defects=False)
+    outcome = construct._solve_model(problem, geometry, options, mode="repair", seconds=10.0, seed=0,
+                                     orientations=_orientations(geometry))
+    assert outcome is not None
+    reach = construct.REACH_M + 1e-6
+    for room_id, (x, y, w, h) in outcome.rects.items():
+        gx, gy, gw, gh = geometry[room_id]
+        for side, drawn in ((x, gx), (y, gy), (x + w, gx + gw), (y + h, gy + gh)):
+            assert abs(side - drawn) <= reach
+
+
+def test_reach_grows_with_the_last_rounds_largest_stretch():
+    rects = {"A": (0.0, 0.0, 6.0, 2.0), "B": (10.0, 0.0, 3.0, 3.0)}
+    assert construct._reaches(rects, None) == {"A": construct.REACH_M, "B": construct.REACH_M}
+    last = construct._Outcome(rects, {}, {("A", "B"): 2.0, ("B", "C"): 0.5}, {}, {})
+    assert construct._reaches(rects, last)["B"] == construct.REACH_M + construct.REACH_PER_STRETCH * 2.0
+
+
+def test_a_far_pair_the_solution_runs_into_enters_the_model(monkeypatch):
+    # two 4 m rooms in a 7 m wide boundary, drawn 3 m wide and 0.5 m apart: brought
+    # towards their targets without their pair in the model they would overlap
+    spec = Spec("two", (room("A", 4.0, 4.0), room("B", 4.0, 4.0)), Boundary(7.0, 10.0), ())
+    monkeypatch.setattr(construct, "LAZY_RADIUS", 0.0)
+    geometry = {"A": (0.5, 1.0, 3.0, 3.0), "B": (3.7, 1.0, 3.0, 3.0)}
+    problem = construct._Problem.of(spec)
+    assert construct._near_options(problem, geometry, {("A", "B"): ("left",)}, None) == {}
+    outcome = construct._solve_model(problem, geometry, {("A", "B"): ("left",)}, mode="final",
+                                     seconds=5.0, seed=0, orientations=_orientations(geometry))
+    assert outcome is not None and not outcome.stretched
+    (ax, _ay, aw, _ah), (bx, _by, _bw, _bh) = outcome.rects["A"], outcome.rects["B"]
+    assert ax + aw + spec.settings.walldim <= bx + 1e-6
+    # the boundary keeps the two from both reaching 4 m: the pair's constraint held
+    assert aw < 4.0 - 1e-3 or outcome.rects["B"][2] < 4.0 - 1e-3
+
+
+def test_construction_still_verifies_with_every_far_pair_left_out(monkeypatch):
+    # the smallest radius: only rooms within their reaches start in a round's model
+    from layoutdsl.layout.verify import verify
+
+    monkeypatch.setattr(construct, "LAZY_RADIUS", 0.0)
+    spec = tree_spec()
+    rects = construct.construct_start(spec, seed=1)
+    assert rects is not None
+    assert construct.hard_violations(spec, rects) == []
+    assert verify(spec, construct.rects_to_layout(spec, rects)) == []
