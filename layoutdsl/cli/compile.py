@@ -214,7 +214,7 @@ _STATUS_TEXT = {
     "construction": "constructed layout (SCIP found no better one in time)",
     "interrupted": "interrupted; the best layout found is written",
     "unknown": "solver stopped; the best layout found is written",
-    "solver_crashed": "the solver's search aborted (a crash inside SCIP); the best layout found before it is written",
+    "solver_crashed": "the solver's search aborted or hung (a crash inside SCIP); the best layout found before it is written",
 }
 
 

@@ -194,7 +194,7 @@ class SolveInfo:
 
     status: str
     """'optimal', 'gap_limit', 'time_limit', 'node_limit', 'solution_limit', 'construction' or
-    'solver_crashed' (the search died natively; the layout is the verified start it had)."""
+    'solver_crashed' (the search died or hung natively; the layout is the verified start it had)."""
     objective: float | None = None
     """(5.1) recomputed from the placed rooms, not SCIP's figure."""
     bound: float | None = None

@@ -8,6 +8,12 @@ improvement on a layout the compile already holds, so it runs in a forked child:
 child sends its outcome and the variables' values back through a pipe; when it dies
 instead, the parent gets a 'solver_crashed' outcome without a solution and keeps what it had.
 
+A child can also hang instead of dying: measured on school_RomainRolland1 and
+office_324-Elm-Furn-Plan, glibc's `malloc(): invalid size` abort left the child's two
+threads (SCIP's and the progress ticker) waiting on each other's locks for good. The
+parent therefore waits at most the search's time limit plus CHILD_GRACE_SECONDS, then
+kills the child and reports the crash.
+
 Forking is safe only while the process has no other thread (a lock another thread holds
 stays held in the child); otherwise, and where there is no fork (Windows), the search runs
 in this process as before. The progress callback runs in the child: lines it prints reach
@@ -18,6 +24,7 @@ from __future__ import annotations
 
 import os
 import pickle
+import select
 import signal
 import threading
 import time
@@ -27,7 +34,12 @@ import pyomo.environ as pyo
 from layoutdsl.solve import ProgressCallback, SolveOptions, SolveOutcome, solve
 
 SOLVER_CRASHED = "solver_crashed"
-"""The status of a search whose child process died (SCIP aborted or was killed)."""
+"""The status of a search whose child process died (SCIP aborted or was killed) or hung."""
+
+CHILD_GRACE_SECONDS = 5.0
+"""Seconds past the search's time limit the parent waits for the child's answer: SCIP's
+own wall-clock guard stops it within about a second (solve.GUARD_GRACE_SECONDS), and
+sending the values back takes milliseconds."""
 
 
 def can_isolate() -> bool:
@@ -74,12 +86,16 @@ def solve_isolated(
         os._exit(code)
     os.close(write_end)
     try:
-        with os.fdopen(read_end, "rb") as pipe:
-            data = pipe.read()
+        data = _read_until(read_end, started + options.time_limit + CHILD_GRACE_SECONDS)
     except KeyboardInterrupt:
-        os.kill(pid, signal.SIGKILL)
-        os.waitpid(pid, 0)
+        _kill(pid)
         raise
+    finally:
+        os.close(read_end)
+    if data is None:  # the child hangs: it will not answer
+        _kill(pid)
+        return SolveOutcome(status=SOLVER_CRASHED, has_solution=False,
+                            seconds=time.monotonic() - started)
     os.waitpid(pid, 0)
     try:
         kind, outcome, values = pickle.loads(data)
@@ -94,3 +110,24 @@ def solve_isolated(
         for variable, value in zip(variables, values):
             variable.set_value(value, skip_validation=True)
     return outcome
+
+
+def _read_until(fd: int, deadline: float) -> bytes | None:
+    """Everything written to the pipe until its writer closes it, or None at the deadline."""
+    chunks: list[bytes] = []
+    while True:
+        left = deadline - time.monotonic()
+        if left <= 0:
+            return None
+        ready, _, _ = select.select([fd], [], [], left)
+        if not ready:
+            continue
+        chunk = os.read(fd, 1 << 16)
+        if not chunk:
+            return b"".join(chunks)
+        chunks.append(chunk)
+
+
+def _kill(pid: int) -> None:
+    os.kill(pid, signal.SIGKILL)
+    os.waitpid(pid, 0)

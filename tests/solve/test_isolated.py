@@ -101,3 +101,20 @@ def test_a_compile_whose_search_aborts_writes_its_verified_start_and_says_so():
                           "status": result.layout.solve.status if result.layout else None}))
     """)
     assert result == {"verified": True, "status": "solver_crashed"}
+
+
+def test_a_child_that_hangs_is_killed_after_its_time_limit_and_reported_crashed():
+    # what a glibc abort deadlocked between SCIP's thread and the progress ticker does
+    result = run_case("""
+        import time
+        def hang(*args, **kwargs):
+            time.sleep(600)
+        isolated.solve = hang
+        isolated.CHILD_GRACE_SECONDS = 0.5
+        began = time.monotonic()
+        outcome = solve_isolated(build_model(planted(2, 1)[0]), SolveOptions(time_limit=1, quiet=True))
+        print(json.dumps({"status": outcome.status, "has": outcome.has_solution,
+                          "seconds": time.monotonic() - began}))
+    """)
+    assert result["status"] == "solver_crashed" and not result["has"]
+    assert result["seconds"] < 10
