@@ -257,6 +257,7 @@ def _solve_model(
     turnable: frozenset[str] = frozenset(),
     start: _Outcome | None = None,
     feasibility_emphasis: bool = False,
+    local: bool = False,
 ) -> _Outcome | None:
     """Solve the rooms' LP/MIP under the allowed pair directions; None without a solution.
 
@@ -265,9 +266,11 @@ def _solve_model(
     stretch costs so much that only the linear deviation of the sizes from their targets is
     left to minimise (elastic rather than hard, so SCIP's tolerances cannot make it fail).
 
-    Pairs of rooms far apart in the round's starting rectangles (`start`, else `geometry`)
-    enter the model only once a solution brings them closer than their relation allows
-    (`_near_options`); the model is then solved again, from that solution.
+    `local` (a geometry close to a layout, such as the hints): a repair round moves each
+    room at most its reach (`_reaches`), and pairs of rooms far apart in the round's
+    starting rectangles (`start`, else `geometry`) enter the model only once a solution
+    brings them closer than their relation allows (`_near_options`); the model is then
+    solved again, from that solution.
     """
     if mode not in ("repair", "final"):
         raise ValueError(f"unknown mode {mode!r}")
@@ -275,8 +278,8 @@ def _solve_model(
     current = start.rects if start is not None else geometry
     # a repair round keeps each room near where it starts; the final LP (relations fixed)
     # may move rooms as far as their sizes need
-    reaches = _reaches(current, start) if mode == "repair" else None
-    active = _near_options(problem, current, options, reaches)
+    reaches = _reaches(current, start) if mode == "repair" and local else None
+    active = _near_options(problem, current, options, reaches) if local else dict(options)
     while True:
         outcome = _solve_active(problem, active, mode=mode, seconds=max(0.05, deadline - time.monotonic()),
                                 seed=seed, orientations=orientations, turnable=turnable, start=start,
@@ -294,16 +297,18 @@ def _solve_model(
 
 
 REACH_M = 3.5
-"""Metres each side of a room's box may move in one repair round (`_add_reach`), plus
-REACH_PER_STRETCH of the previous round's largest stretch; a room whose sides differ by
-more than twice that cannot turn in the round. Measured with construct_start (45 s, seeds
-0-3, the machine's two cores busy): office_OfficePlan constructs for 4 of 4 seeds (12, 38,
-4.6 and 25 s) against 0 of 4 with rooms free to go anywhere, where a round's MIP carries
-rooms across the plan to cut the stretch and the next round starts further from a layout;
-school_stjoseph_scatholichighschool with hints and L-rooms constructs in 4-9 s (none in
-60 s before). A fixed 3.5 m without the stretch term did as well on office_OfficePlan but
-slowed school_wilbraham's variants (mean 7.0 s against 4.2 s over 30 seeds): conflicts of
-generated geometries need longer moves."""
+"""Metres each side of a room's box may move in one local repair round (`_add_reach`),
+plus REACH_PER_STRETCH of the previous round's largest stretch; a room whose sides differ
+by more than twice that cannot turn in the round.
+
+Local rounds are for the hints (the original plan's boxes), which are close to a layout:
+school_stjoseph_scatholichighschool with hints and its L-rooms then constructs in 4-9 s,
+against none in 60 s when a round's MIP holds all 6328 pairs and may carry rooms across
+the plan (its rounds ran out of time at 8 s with the stretch stuck at 29 m). Generated
+geometries are not: their conflicts need long moves. Measured with local rounds for them
+too (bench/generation.py, 60 s): school_rockislandsecondfloor and
+school_hendersonhighschool no longer constructed, office_OfficePlan did for some seeds
+and not others; so they keep rounds over every pair, free to move anywhere."""
 
 REACH_PER_STRETCH = 0.5
 
@@ -832,13 +837,16 @@ def _repair(
     seed: int,
     max_stalls: int = MAX_STALLS,
     free_defects: bool = False,
+    local: bool = False,
 ) -> dict[str, Rect] | None:
     """Relations from the geometry, repaired round by round until they admit a layout.
 
     Each round solves the elastic model; the pairs it had to stretch, and the pairs close to
     their rooms, get more freedom (one axis -> either axis -> any direction) for the next
     round, which starts from the previous solution. Zero stretch ends the repair; a final
-    LP with those relations then brings the sizes towards their targets.
+    LP with those relations then brings the sizes towards their targets. `local`: the
+    geometry is close to a layout (the hints), and each round's moves stay local
+    (_solve_model).
     """
     options = _first_options(problem, geometry, free_defects)
     start: _Outcome | None = None
@@ -856,11 +864,11 @@ def _repair(
         outcome = _solve_model(problem, geometry, options, mode="repair",
                                seconds=min(left, 1.0 + 0.25 * left), seed=seed,
                                orientations=orientations, turnable=frozenset(turnable),
-                               start=start, feasibility_emphasis=stalls > 0)
+                               start=start, feasibility_emphasis=stalls > 0, local=local)
         if outcome is None:
             return None
         if not outcome.stretched:
-            return _final_layout(problem, geometry, outcome, deadline, seed)
+            return _final_layout(problem, geometry, outcome, deadline, seed, local)
         _debug(f"  round {round_index}: {len(outcome.stretched)} stretched, "
                f"total {sum(outcome.stretched.values()):.2f} m: "
                + ", ".join(f"{a}-{b} {options[(a, b)]} {v:.2f}"
@@ -924,13 +932,13 @@ def _adjacency_neighbours(spec: Spec) -> dict[str, set[str]]:
 
 
 def _final_layout(problem: _Problem, geometry: dict[str, Rect], outcome: _Outcome,
-                  deadline: float, seed: int) -> dict[str, Rect] | None:
+                  deadline: float, seed: int, local: bool = False) -> dict[str, Rect] | None:
     """The relations of a zero-stretch round with the sizes brought towards their targets
     (else that round's own rectangles), if they pass `check_start`; None otherwise."""
     final_options = {pair: (direction,) for pair, direction in outcome.chosen.items()}
     final = _solve_model(problem, geometry, final_options, mode="final",
                          seconds=max(0.5, min(5.0, deadline - time.monotonic())),
-                         seed=seed, orientations=outcome.orientations)
+                         seed=seed, orientations=outcome.orientations, local=local)
     for rects in (final.rects if final else None, outcome.rects):
         if rects is None:
             continue
@@ -1033,7 +1041,7 @@ def construct_start(
         # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
         rects = _repair(candidate_problem, geometry, time.monotonic() + share, seed,
                         max_stalls=MAX_STALLS if kind == "hints" else GRAPH_MAX_STALLS,
-                        free_defects=kind == "generated")
+                        free_defects=kind == "generated", local=kind == "hints")
         if rects is not None:
             return rects
     return None

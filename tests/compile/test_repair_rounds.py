@@ -1,7 +1,10 @@
-"""One round of the construction's repair: rooms stay within their reach, and pairs of rooms
-left out of the model for being far apart enter it when a solution needs them."""
+"""One local round of the construction's repair (a geometry close to a layout, such as the
+hints): rooms stay within their reach, and pairs of rooms left out of the model for being
+far apart enter it when a solution needs them."""
 
 from __future__ import annotations
+
+from dataclasses import replace
 
 from layoutdsl.compile import construct
 from layoutdsl.syntax.ast import Boundary, Spec
@@ -21,7 +24,7 @@ def test_a_repair_round_keeps_every_room_within_its_reach():
     problem = construct._Problem.of(spec)
     options = construct._first_options(problem, geometry, free_defects=False)
     outcome = construct._solve_model(problem, geometry, options, mode="repair", seconds=10.0, seed=0,
-                                     orientations=_orientations(geometry))
+                                     orientations=_orientations(geometry), local=True)
     assert outcome is not None
     reach = construct.REACH_M + 1e-6
     for room_id, (x, y, w, h) in outcome.rects.items():
@@ -46,7 +49,7 @@ def test_a_far_pair_the_solution_runs_into_enters_the_model(monkeypatch):
     problem = construct._Problem.of(spec)
     assert construct._near_options(problem, geometry, {("A", "B"): ("left",)}, None) == {}
     outcome = construct._solve_model(problem, geometry, {("A", "B"): ("left",)}, mode="final",
-                                     seconds=5.0, seed=0, orientations=_orientations(geometry))
+                                     seconds=5.0, seed=0, orientations=_orientations(geometry), local=True)
     assert outcome is not None and not outcome.stretched
     (ax, _ay, aw, _ah), (bx, _by, _bw, _bh) = outcome.rects["A"], outcome.rects["B"]
     assert ax + aw + spec.settings.walldim <= bx + 1e-6
@@ -54,12 +57,28 @@ def test_a_far_pair_the_solution_runs_into_enters_the_model(monkeypatch):
     assert aw < 4.0 - 1e-3 or outcome.rects["B"][2] < 4.0 - 1e-3
 
 
-def test_construction_still_verifies_with_every_far_pair_left_out(monkeypatch):
-    # the smallest radius: only rooms within their reaches start in a round's model
+def test_a_round_that_is_not_local_holds_every_pair_and_may_move_rooms_anywhere():
+    spec = tree_spec()
+    geometry = {r.id: (8.0 + 0.3 * i, 6.0 + 0.2 * i, r.target_w, r.target_h) for i, r in enumerate(spec.rooms)}
+    problem = construct._Problem.of(spec)
+    options = construct._first_options(problem, geometry, free_defects=False)
+    outcome = construct._solve_model(problem, geometry, options, mode="repair", seconds=10.0, seed=0,
+                                     orientations=_orientations(geometry))
+    assert outcome is not None and set(outcome.chosen) == set(options)
+    moved = max(abs(a - b) for room_id, rect in outcome.rects.items() for a, b in zip(rect, geometry[room_id]))
+    assert moved > construct.REACH_M
+
+
+def test_hints_still_construct_with_every_far_pair_left_out(monkeypatch):
+    # the smallest radius: only rooms within their reaches start in a local round's model
     from layoutdsl.layout.verify import verify
+    from layoutdsl.syntax.ast import Hint
 
     monkeypatch.setattr(construct, "LAZY_RADIUS", 0.0)
     spec = tree_spec()
+    hints = tuple(Hint(r.id, 1.0 + 2.5 * (i % 4), 1.0 + 4.0 * (i // 4), r.target_w, r.target_h)
+                  for i, r in enumerate(spec.rooms))
+    spec = replace(spec, hints=hints)
     rects = construct.construct_start(spec, seed=1)
     assert rects is not None
     assert construct.hard_violations(spec, rects) == []
