@@ -16,7 +16,10 @@ start it polishes well. So we construct the start ourselves:
    connections, clusters - stays hard). The pairs it had to stretch, and the pairs near
    their rooms, get more freedom for the next round: one binary (either axis), then all
    four directions, and after a stall the rooms' graph neighbours join in. Each round is a
-   small MIP warm-started from the previous solution, stopped at zero stretch.
+   small MIP warm-started from the previous solution, stopped at zero stretch. From the
+   hints (close to a layout already) the rounds are local: each room moves a few metres at
+   most, and pairs of rooms too far apart to meet are left out of the model until a
+   solution brings them together (`_solve_model`).
 4. With zero stretch the relations are final: one more LP brings the sizes to their
    targets, and the rectangles are checked against every hard constraint (our own check,
    then `layoutdsl.layout.verify`) before they are returned.
