@@ -16,16 +16,22 @@ def _orientations(geometry):
     return {room_id: w >= h for room_id, (_x, _y, w, h) in geometry.items()}
 
 
-def test_a_repair_round_keeps_every_room_within_its_reach():
+def _first_round_of_a_pile(local: bool):
+    """(geometry, options, outcome) of the first repair round of tree_spec's rooms all drawn
+    at nearly one spot, so the round must pull them apart."""
     spec = tree_spec()
-    # every room drawn at one spot: the round must pull them apart, and may not pull any
-    # room side further than REACH_M from where it was drawn
     geometry = {r.id: (8.0 + 0.3 * i, 6.0 + 0.2 * i, r.target_w, r.target_h) for i, r in enumerate(spec.rooms)}
     problem = construct._Problem.of(spec)
     options = construct._first_options(problem, geometry, free_defects=False)
     outcome = construct._solve_model(problem, geometry, options, mode="repair", seconds=10.0, seed=0,
-                                     orientations=_orientations(geometry), local=True)
+                                     orientations=_orientations(geometry), local=local)
     assert outcome is not None
+    return geometry, options, outcome
+
+
+def test_a_repair_round_keeps_every_room_within_its_reach():
+    # no room side may move further than REACH_M from where it was drawn
+    geometry, _options, outcome = _first_round_of_a_pile(local=True)
     reach = construct.REACH_M + 1e-6
     for room_id, (x, y, w, h) in outcome.rects.items():
         gx, gy, gw, gh = geometry[room_id]
@@ -58,13 +64,8 @@ def test_a_far_pair_the_solution_runs_into_enters_the_model(monkeypatch):
 
 
 def test_a_round_that_is_not_local_holds_every_pair_and_may_move_rooms_anywhere():
-    spec = tree_spec()
-    geometry = {r.id: (8.0 + 0.3 * i, 6.0 + 0.2 * i, r.target_w, r.target_h) for i, r in enumerate(spec.rooms)}
-    problem = construct._Problem.of(spec)
-    options = construct._first_options(problem, geometry, free_defects=False)
-    outcome = construct._solve_model(problem, geometry, options, mode="repair", seconds=10.0, seed=0,
-                                     orientations=_orientations(geometry))
-    assert outcome is not None and set(outcome.chosen) == set(options)
+    geometry, options, outcome = _first_round_of_a_pile(local=False)
+    assert set(outcome.chosen) == set(options)
     moved = max(abs(a - b) for room_id, rect in outcome.rects.items() for a, b in zip(rect, geometry[room_id]))
     assert moved > construct.REACH_M
 
