@@ -38,7 +38,7 @@ import time
 from dataclasses import dataclass, replace
 from collections.abc import Mapping
 
-from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects
+from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects, separations
 from layoutdsl.compile import lshape
 from layoutdsl.compile.generate import RoomSizes, cycle_blocks, drawn_sides, generate_geometry, room_graph
 from layoutdsl.compile.ladders import find_ladder, ladder_template
@@ -70,13 +70,6 @@ Pair = tuple[str, str]
 def _centre(rect: Rect) -> tuple[float, float]:
     x, y, w, h = rect
     return (x + w / 2, y + h / 2)
-
-
-def _separations(a: Rect, b: Rect) -> tuple[float, float]:
-    """Gap between two rectangles along x and along y (negative: they overlap that much)."""
-    ax, ay, aw, ah = a
-    bx, by, bw, bh = b
-    return (max(bx - ax - aw, ax - bx - bw), max(by - ay - ah, ay - by - bh))
 
 
 def _ordered_directions(a: Rect, b: Rect, index_a: int, index_b: int) -> tuple[str, str]:
@@ -158,13 +151,18 @@ class _Problem:
         """The pair's two centre-ordered directions, the geometry's clearer one first."""
         a, b = pair
         ra, rb = self.rect(geometry, a), self.rect(geometry, b)
-        sep_x, sep_y = _separations(ra, rb)
+        sep_x, sep_y = separations(ra, rb)
         dir_x, dir_y = _ordered_directions(ra, rb, self.order[a], self.order[b])
         return (dir_x, dir_y) if sep_x >= sep_y else (dir_y, dir_x)
 
+    def gap(self, pair: Pair) -> float:
+        """Least distance between a pair that shares no door: a wall, plus SAFETY unless
+        the pair is kept exactly a wall apart (exact_walls)."""
+        return self.walldim + (0.0 if frozenset(pair) in self.exact_walls else SAFETY)
+
     def distance(self, geometry: dict[str, Rect], pair: Pair) -> float:
         a, b = pair
-        return max(_separations(self.rect(geometry, a), self.rect(geometry, b)))
+        return max(separations(self.rect(geometry, a), self.rect(geometry, b)))
 
 
 # ---------------------------------------------------------------------------------------
@@ -181,16 +179,21 @@ class _Box:
         self.x, self.y, self.w, self.h = x, y, w, h
 
 
+def _excess(a: _Box, b: _Box, direction: str, gap: float):
+    """How far a is from lying on the `direction` side of b with `gap` between them (at most
+    0: it does); a and b hold SCIP variables (an expression) or numbers (a number)."""
+    if direction == "left":
+        return a.x + a.w + gap - b.x
+    if direction == "right":
+        return b.x + b.w + gap - a.x
+    if direction == "below":
+        return a.y + a.h + gap - b.y
+    return b.y + b.h + gap - a.y
+
+
 def _add_direction(model, a: _Box, b: _Box, direction: str, gap: float, slack) -> None:
     """a lies on the `direction` side of b with at least `gap` between them, up to `slack`."""
-    if direction == "left":
-        model.addCons(a.x + a.w + gap - b.x <= slack)
-    elif direction == "right":
-        model.addCons(b.x + b.w + gap - a.x <= slack)
-    elif direction == "below":
-        model.addCons(a.y + a.h + gap - b.y <= slack)
-    else:
-        model.addCons(b.y + b.h + gap - a.y <= slack)
+    model.addCons(_excess(a, b, direction, gap) <= slack)
 
 
 def _add_adjacent(model, a: _Box, b: _Box, direction: str, walldim: float, wall: float,
@@ -270,7 +273,7 @@ def _solve_model(
     left to minimise (elastic rather than hard, so SCIP's tolerances cannot make it fail).
 
     `local` (a geometry close to a layout, such as the hints): a repair round moves each
-    room at most its reach (`_reaches`), and pairs of rooms far apart in the round's
+    room at most its reach (`_reach`), and pairs of rooms far apart in the round's
     starting rectangles (`start`, else `geometry`) enter the model only once a solution
     brings them closer than their relation allows (`_near_options`); the model is then
     solved again, from that solution.
@@ -281,21 +284,22 @@ def _solve_model(
     current = start.rects if start is not None else geometry
     # a repair round keeps each room near where it starts; the final LP (relations fixed)
     # may move rooms as far as their sizes need
-    reaches = _reaches(current, start) if mode == "repair" and local else None
-    active = _near_options(problem, current, options, reaches) if local else dict(options)
+    reach = _reach(start) if mode == "repair" and local else None
+    active = _near_options(problem, current, options, reach) if local else dict(options)
     while True:
         outcome = _solve_active(problem, active, mode=mode, seconds=max(0.05, deadline - time.monotonic()),
                                 seed=seed, orientations=orientations, turnable=turnable, start=start,
-                                feasibility_emphasis=feasibility_emphasis, within=(current, reaches))
+                                feasibility_emphasis=feasibility_emphasis, within=(current, reach))
         if outcome is None:
             return None
-        entering = {pair: allowed for pair, allowed in options.items()
-                    if pair not in active
-                    and _least_stretch(problem, outcome.rects, pair, allowed)[1] > LAZY_TOLERANCE}
+        left_out = {pair: _least_stretch(problem, outcome.rects, pair, allowed)
+                    for pair, allowed in options.items() if pair not in active}
+        completed = _completed(outcome, left_out)
+        entering = {pair: options[pair] for pair, (_direction, need) in left_out.items() if need > LAZY_TOLERANCE}
         if not entering or deadline - time.monotonic() <= 0.05:
-            return _completed(problem, outcome, options, active)
+            return completed
         _debug(f"    {len(entering)} far pairs enter the model")
-        start = _completed(problem, outcome, options, active)
+        start = completed
         active.update(entering)
 
 
@@ -328,26 +332,24 @@ LAZY_TOLERANCE = 1e-9
 """Metres a far pair may violate its relation by before it enters the model."""
 
 
-def _reaches(rects: dict[str, Rect], start: _Outcome | None) -> dict[str, float]:
-    """Room id -> metres each side of its box may move this round (REACH_M, plus
-    REACH_PER_STRETCH of the previous round's largest stretch)."""
-    reach = REACH_M
-    if start is not None:
-        reach += REACH_PER_STRETCH * max(start.stretched.values(), default=0.0)
-    return dict.fromkeys(rects, reach)
+def _reach(start: _Outcome | None) -> float:
+    """Metres each side of a room's box may move this round: REACH_M, plus
+    REACH_PER_STRETCH of the previous round's largest stretch."""
+    if start is None:
+        return REACH_M
+    return REACH_M + REACH_PER_STRETCH * max(start.stretched.values(), default=0.0)
 
 
-def _add_reach(model, boxes: dict[str, _Box], rects: dict[str, Rect],
-               reaches: dict[str, float]) -> None:
-    """Each side of each room's box within its reach of where it is in `rects`.
+def _add_reach(model, boxes: dict[str, _Box], rects: dict[str, Rect], reach: float) -> None:
+    """Each side of each room's box within `reach` of where it is in `rects`.
 
-    Two rooms further apart than their reaches and a wall cannot then collide, which is
-    what lets `_near_options` leave them out of the model. Both ways, not only outwards:
-    when local rounds were tried on generated geometries too, rooms that could also shrink
+    Two rooms further apart than twice that and a wall cannot then collide, which is what
+    lets `_near_options` leave them out of the model. Both ways, not only outwards: when
+    local rounds were tried on generated geometries too, rooms that could also shrink
     freely made office_OfficePlan construct for 2 of 4 seeds instead of 4 (45 s each)."""
     for room_id, (x, y, w, h) in rects.items():
-        box, reach = boxes.get(room_id), reaches.get(room_id)
-        if box is None or reach is None:
+        box = boxes.get(room_id)
+        if box is None:
             continue
         for side, at in ((box.x, x), (box.y, y), (box.x + box.w, x + w), (box.y + box.h, y + h)):
             model.addCons(side >= at - reach)
@@ -355,19 +357,17 @@ def _add_reach(model, boxes: dict[str, _Box], rects: dict[str, Rect],
 
 
 def _near_options(problem: _Problem, rects: dict[str, Rect], options: dict[Pair, tuple[str, ...]],
-                  reaches: dict[str, float] | None) -> dict[Pair, tuple[str, ...]]:
+                  reach: float | None) -> dict[Pair, tuple[str, ...]]:
     """The options of the pairs a round's model starts with: every door and every L's two
-    boxes, and the pairs near each other in `rects` (LAZY_RADIUS, or their reaches)."""
-    def radius(pair: Pair) -> float:
-        if reaches is None:
-            return LAZY_RADIUS
-        reach = sum(reaches.get(thing, 0.0) for thing in pair)
-        return max(LAZY_RADIUS, reach + problem.walldim + LAZY_MARGIN)
-
+    boxes, and the pairs near each other in `rects`: within LAZY_RADIUS, or within the two
+    rooms' reach and a wall when that is further."""
+    radius = LAZY_RADIUS
+    if reach is not None:
+        radius = max(LAZY_RADIUS, 2 * reach + problem.walldim + LAZY_MARGIN)
     return {
         pair: allowed for pair, allowed in options.items()
         if frozenset(pair) in problem.walls or pair in problem.joins
-        or problem.distance(rects, pair) <= radius(pair)
+        or problem.distance(rects, pair) <= radius
     }
 
 
@@ -375,30 +375,21 @@ def _least_stretch(problem: _Problem, rects: dict[str, Rect], pair: Pair,
                    allowed: tuple[str, ...]) -> tuple[str, float]:
     """(direction, metres) of the allowed direction the pair's rooms (not sharing a door,
     not one L) violate least in `rects`, and by how much (0: satisfied, with SAFETY)."""
-    a, b = (problem.rect(rects, thing) for thing in pair)
-    gap = problem.walldim + (0.0 if frozenset(pair) in problem.exact_walls else SAFETY)
-    needs = {
-        "left": a[0] + a[2] + gap - b[0],
-        "right": b[0] + b[2] + gap - a[0],
-        "below": a[1] + a[3] + gap - b[1],
-        "above": b[1] + b[3] + gap - a[1],
-    }
-    direction = min(allowed, key=lambda d: needs[d])
+    a, b = (_Box(*problem.rect(rects, thing)) for thing in pair)
+    needs = {direction: _excess(a, b, direction, problem.gap(pair)) for direction in allowed}
+    direction = min(allowed, key=needs.__getitem__)
     return direction, max(0.0, needs[direction])
 
 
-def _completed(problem: _Problem, outcome: _Outcome, options: dict[Pair, tuple[str, ...]],
-               active: dict[Pair, tuple[str, ...]]) -> _Outcome:
-    """The outcome with the pairs left out of its model (not in `active`): each in its
-    least-violated direction and stretched by what it violates (zero once no far pair
-    does), with that stretch as its value for warm-starting a model it enters."""
+def _completed(outcome: _Outcome, left_out: dict[Pair, tuple[str, float]]) -> _Outcome:
+    """The outcome with the pairs left out of its model (pair -> (least-violated direction,
+    by how much), _least_stretch): each in that direction and stretched by what it violates
+    (zero once no far pair does), with that stretch as its value for warm-starting a model
+    it enters."""
     chosen = dict(outcome.chosen)
     stretched = dict(outcome.stretched)
     values = dict(outcome.values)
-    for pair, allowed in options.items():
-        if pair in active:
-            continue
-        direction, need = _least_stretch(problem, outcome.rects, pair, allowed)
+    for pair, (direction, need) in left_out.items():
         chosen[pair] = direction
         if need > LAZY_TOLERANCE:
             stretched[pair] = need
@@ -417,10 +408,10 @@ def _solve_active(
     turnable: frozenset[str],
     start: _Outcome | None,
     feasibility_emphasis: bool,
-    within: tuple[dict[str, Rect], dict[str, float] | None],
+    within: tuple[dict[str, Rect], float | None],
 ) -> _Outcome | None:
-    """One SCIP solve of the model with the pairs of `options`, each room within its reach
-    of its rectangle (`within`: rectangles, reaches; None: anywhere); see _solve_model."""
+    """One SCIP solve of the model with the pairs of `options`, each room within a reach of
+    its rectangle (`within`: rectangles, reach; None: anywhere); see _solve_model."""
     repair = mode == "repair"
     from pyscipopt import quicksum
 
@@ -598,7 +589,6 @@ def _add_pair_relations(model, problem: _Problem, boxes: dict[str, _Box],
     up to a stretch variable that the objective prices."""
     from pyscipopt import quicksum
 
-    gap = problem.walldim + SAFETY
     pairs = _PairVars({}, {}, [])
     for pair, allowed in options.items():
         a, b = pair
@@ -618,8 +608,7 @@ def _add_pair_relations(model, problem: _Problem, boxes: dict[str, _Box],
             if joined:
                 _add_join(model, boxes[a], boxes[b], direction, slack)
             elif wall is None:
-                exact = frozenset(pair) in problem.exact_walls
-                _add_direction(model, boxes[a], boxes[b], direction, problem.walldim if exact else gap, slack)
+                _add_direction(model, boxes[a], boxes[b], direction, problem.gap(pair), slack)
             else:
                 _add_adjacent(model, boxes[a], boxes[b], direction, problem.walldim, wall, slack)
     return pairs
@@ -740,12 +729,12 @@ def hard_violations(spec: Spec, rects: dict[str, Rect]) -> list[str]:
     ]
     for i, (a, ra) in enumerate(things):
         for b, rb in things[i + 1:]:
-            sep_x, sep_y = _separations(ra, rb)
+            sep_x, sep_y = separations(ra, rb)
             if max(sep_x, sep_y) < walldim - tol:
                 problems.append(f"{a} and {b} overlap or lack a wall between them")
     door_factor = spec.settings.door_utilization
     for adj in spec.adjacencies:
-        sep_x, sep_y = _separations(rects[adj.a], rects[adj.b])
+        sep_x, sep_y = separations(rects[adj.a], rects[adj.b])
         need = adj.door / door_factor - tol
         touching = (abs(sep_x - walldim) <= tol and -sep_y >= need) or (
             abs(sep_y - walldim) <= tol and -sep_x >= need

@@ -20,7 +20,7 @@ import math
 import random
 from dataclasses import replace
 
-from layoutdsl.layout.geometry import SIDES, Rect
+from layoutdsl.layout.geometry import SIDES, Rect, separations
 from layoutdsl.syntax.ast import Adjacency, Hint, Spec, arm_id
 
 ENDS = ("lo", "hi")
@@ -172,7 +172,7 @@ def box_distance(a: Rect, b: Rect) -> float:
     neighbour the one sharing more wall wins."""
     ax, ay, aw, ah = a
     bx, by, bw, bh = b
-    gap_x, gap_y = _gaps(a, b)
+    gap_x, gap_y = separations(a, b)
     facing = min(ax + aw, bx + bw) - max(ax, bx) if gap_y >= gap_x else min(ay + ah, by + bh) - max(ay, by)
     return max(gap_x, gap_y) - 0.01 * max(0.0, facing)
 
@@ -297,7 +297,7 @@ room: less than any real overlap, more than nothing."""
 def _touching(a: Rect, b: Rect, walldim: float) -> float:
     """Length along which two boxes lie against each other (a gap of at most a wall and a
     half, or an overlap of at most a wall)."""
-    gap_x, gap_y = _gaps(a, b)
+    gap_x, gap_y = separations(a, b)
     if -walldim <= gap_x <= 1.5 * walldim and gap_y < 0:
         return -gap_y
     if -walldim <= gap_y <= 1.5 * walldim and gap_x < 0:
@@ -318,13 +318,8 @@ def _walls(spec: Spec) -> dict[str, list[tuple[str, float]]]:
 def contact_shortfall(a: Rect, b: Rect, walldim: float, wall: float) -> float:
     """Metres two boxes are from touching with one wall between them and `wall` m of it
     shared (0: they do)."""
-    gap_x, gap_y = _gaps(a, b)
+    gap_x, gap_y = separations(a, b)
     along_x = abs(gap_x - walldim) + max(0.0, wall + gap_y)
     along_y = abs(gap_y - walldim) + max(0.0, wall + gap_x)
     return max(0.0, min(along_x, along_y) - 1e-6)
 
-
-def _gaps(a: Rect, b: Rect) -> tuple[float, float]:
-    ax, ay, aw, ah = a
-    bx, by, bw, bh = b
-    return max(bx - ax - aw, ax - bx - bw), max(by - ay - ah, ay - by - bh)

@@ -22,6 +22,13 @@ OPPOSITE_SIDE = {"left": "right", "right": "left", "below": "above", "above": "b
 """The side b is on when a is on `side` of it."""
 
 
+def separations(a: Rect, b: Rect) -> tuple[float, float]:
+    """Gap between two rectangles along x and along y (negative: they overlap that much)."""
+    ax, ay, aw, ah = a
+    bx, by, bw, bh = b
+    return (max(bx - ax - aw, ax - bx - bw), max(by - ay - ah, ay - by - bh))
+
+
 def _welded_arm(box: Rect, arm: Rect) -> Rect:
     """The arm with each edge within WELD of one of the box's edge lines moved onto it: the
     solver joins the two only to its tolerance, and an L whose edges miss each other by a

@@ -41,9 +41,9 @@ def test_a_repair_round_keeps_every_room_within_its_reach():
 
 def test_reach_grows_with_the_last_rounds_largest_stretch():
     rects = {"A": (0.0, 0.0, 6.0, 2.0), "B": (10.0, 0.0, 3.0, 3.0)}
-    assert construct._reaches(rects, None) == {"A": construct.REACH_M, "B": construct.REACH_M}
+    assert construct._reach(None) == construct.REACH_M
     last = construct._Outcome(rects, {}, {("A", "B"): 2.0, ("B", "C"): 0.5}, {}, {})
-    assert construct._reaches(rects, last)["B"] == construct.REACH_M + construct.REACH_PER_STRETCH * 2.0
+    assert construct._reach(last) == construct.REACH_M + construct.REACH_PER_STRETCH * 2.0
 
 
 def test_a_far_pair_the_solution_runs_into_enters_the_model(monkeypatch):
