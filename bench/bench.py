@@ -23,11 +23,12 @@ import argparse
 import fnmatch
 import json
 import math
-import multiprocessing
 import statistics
 import sys
 import time
 from pathlib import Path
+
+from layoutdsl.devtools.isolation import run_isolated
 
 DEFAULT_FOLDER = Path(__file__).resolve().parents[2] / "shared" / "floorplans"
 GRACE_SECONDS = 30.0
@@ -89,32 +90,9 @@ def _solve(path: str, strategy: str, time_limit: float, seed: int) -> dict:
     return row
 
 
-def _child(queue, path, strategy, time_limit, seed):
-    try:
-        queue.put(_solve(path, strategy, time_limit, seed))
-    except Exception as error:  # one plan's failure is a row, never the end of the run
-        queue.put({"status": "error", "error": f"{type(error).__name__}: {error}"})
-
-
 def solve_isolated(path: Path, strategy: str, time_limit: float, seed: int) -> dict:
-    """_solve in a forked process, killed if it overruns its limit by GRACE_SECONDS."""
-    context = multiprocessing.get_context("fork")
-    queue = context.Queue()
-    process = context.Process(target=_child, args=(queue, str(path), strategy, time_limit, seed))
-    began = time.monotonic()
-    process.start()
-    try:
-        row = queue.get(timeout=time_limit + GRACE_SECONDS)
-    except Exception:
-        row = {"status": "killed", "seconds": round(time.monotonic() - began, 3)}
-    process.join(timeout=5)
-    if process.is_alive():
-        process.kill()
-        process.join()
-    if process.exitcode not in (0, None) and row.get("status") in (None, "killed"):
-        row = {"status": f"crashed (exit {process.exitcode})",
-               "seconds": round(time.monotonic() - began, 3)}
-    return row
+    """_solve in a process group of its own, killed if it overruns its limit by GRACE_SECONDS."""
+    return run_isolated(_solve, str(path), strategy, time_limit, seed, limit=time_limit + GRACE_SECONDS)
 
 
 def plan_facts(path: Path) -> dict:

@@ -32,6 +32,8 @@ import sys
 import time
 from pathlib import Path
 
+from layoutdsl.devtools.isolation import run_isolated
+
 DEFAULT_FOLDER = Path(__file__).resolve().parents[2] / "shared" / "floorplans"
 GRACE_SECONDS = 30.0
 """A solve gets this long past its time limit before its process is killed."""
@@ -102,29 +104,9 @@ def _compile_plan(path: str, time_limit: float, seed: int) -> dict:
     return row
 
 
-def _child(queue, function, *args):
-    try:
-        queue.put(function(*args))
-    except Exception as error:  # one plan's failure is a row, never the end of the run
-        queue.put({"status": "error", "error": f"{type(error).__name__}: {error}"})
-
-
 def isolated(function, *args, limit: float) -> dict:
-    """function(*args) in a forked process, killed if it overruns `limit` + GRACE_SECONDS."""
-    context = multiprocessing.get_context("fork")
-    queue = context.Queue()
-    process = context.Process(target=_child, args=(queue, function, *args))
-    began = time.monotonic()
-    process.start()
-    try:
-        row = queue.get(timeout=limit + GRACE_SECONDS)
-    except Exception:
-        row = {"status": "killed", "seconds": round(time.monotonic() - began, 3)}
-    process.join(timeout=5)
-    if process.is_alive():
-        process.kill()
-        process.join()
-    return row
+    """function(*args) in a process group of its own, killed if it overruns `limit` + GRACE_SECONDS."""
+    return run_isolated(function, *args, limit=limit + GRACE_SECONDS)
 
 
 COLUMNS = (
