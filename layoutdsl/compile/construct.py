@@ -40,9 +40,7 @@ from collections.abc import Mapping
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects, separations
 from layoutdsl.compile import lshape
-from layoutdsl.compile.generate import (
-    RoomSizes, cycle_blocks, drawn_sides, generate_geometry, room_graph, target_density,
-)
+from layoutdsl.compile.generate import RoomSizes, cycle_blocks, drawn_sides, generate_geometry, room_graph
 from layoutdsl.compile.ladders import find_ladder, ladder_template
 from layoutdsl.syntax.ast import Room, Spec
 
@@ -266,7 +264,6 @@ def _solve_model(
     start: _Outcome | None = None,
     feasibility_emphasis: bool = False,
     local: bool = False,
-    unbounded: frozenset[str] = frozenset(),
 ) -> _Outcome | None:
     """Solve the rooms' LP/MIP under the allowed pair directions; None without a solution.
 
@@ -279,8 +276,7 @@ def _solve_model(
     room at most its reach (`_reach`), and pairs of rooms far apart in the round's
     starting rectangles (`start`, else `geometry`) enter the model only once a solution
     brings them closer than their relation allows (`_near_options`); the model is then
-    solved again, from that solution. The rooms in `unbounded` have no reach (their far
-    pairs enter the same way).
+    solved again, from that solution.
     """
     if mode not in ("repair", "final"):
         raise ValueError(f"unknown mode {mode!r}")
@@ -293,8 +289,7 @@ def _solve_model(
     while True:
         outcome = _solve_active(problem, active, mode=mode, seconds=max(0.05, deadline - time.monotonic()),
                                 seed=seed, orientations=orientations, turnable=turnable, start=start,
-                                feasibility_emphasis=feasibility_emphasis,
-                                within=({k: v for k, v in current.items() if k not in unbounded}, reach))
+                                feasibility_emphasis=feasibility_emphasis, within=(current, reach))
         if outcome is None:
             return None
         left_out = {pair: _least_stretch(problem, outcome.rects, pair, allowed)
@@ -317,27 +312,12 @@ Local rounds are for the hints (the original plan's boxes), which are close to a
 school_stjoseph_scatholichighschool with hints and its L-rooms then constructs in 4-9 s,
 against none in 60 s when a round's MIP holds all 6328 pairs and may carry rooms across
 the plan (its rounds ran out of time at 8 s with the stretch stuck at 29 m). Generated
-geometries are not: some of their conflicts need long moves. Measured with every round
-local for them too (bench/generation.py, 60 s): school_rockislandsecondfloor and
+geometries are not: their conflicts need long moves. Measured with local rounds for them
+too (bench/generation.py, 60 s): school_rockislandsecondfloor and
 school_hendersonhighschool no longer constructed, office_OfficePlan did for some seeds
-and not others. So a generated geometry gets a first round over every pair, and later
-rounds local only in dense plans, with the conflicting rooms free (MIXED_MIN_DENSITY)."""
+and not others; so they keep rounds over every pair, free to move anywhere."""
 
 REACH_PER_STRETCH = 0.5
-
-MIXED_MIN_DENSITY = 0.5
-"""Target room area per m² of boundary above which a generated geometry is repaired in
-mixed rounds (`_repair`): a first round over every pair, then local rounds in which only
-the rooms of the stretched pairs may move far.
-
-In a dense plan there is no free space for a room to be carried into: conflicts are settled
-by rooms shuffling near where they are, and a round over every pair, free to move anywhere,
-is a MIP SCIP cannot improve in its share of time. Measured on office_OfficePlan (0.89):
-its rounds stopped at the time limit with 85-106 free relations and the stretch unchanged,
-round after round, and no layout was found (seed 0, 60 s); with mixed rounds, its first
-layout after 28.9 s (bench/generation.py). In a sparse plan the long moves are what
-settles the conflicts: with mixed rounds school_hendersonhighschool (0.44) found none at
-seed 0 (11.3 s with rounds over every pair), so plans at or below this density keep them."""
 
 LAZY_RADIUS = 8.0
 """Metres apart (along their clearer axis) beyond which a pair of rooms that share no
@@ -850,7 +830,6 @@ def _repair(
     max_stalls: int = MAX_STALLS,
     free_defects: bool = False,
     local: bool = False,
-    mixed: bool = False,
 ) -> dict[str, Rect] | None:
     """Relations from the geometry, repaired round by round until they admit a layout.
 
@@ -859,9 +838,7 @@ def _repair(
     round, which starts from the previous solution. Zero stretch ends the repair; a final
     LP with those relations then brings the sizes towards their targets. `local`: the
     geometry is close to a layout (the hints), and each round's moves stay local
-    (_solve_model). `mixed` (a generated geometry of a dense plan): the first round is
-    over every pair, free to move anywhere; later rounds are local, except that the rooms
-    of the pairs the last round stretched have no reach (see MIXED_MIN_DENSITY).
+    (_solve_model).
     """
     options = _first_options(problem, geometry, free_defects)
     start: _Outcome | None = None
@@ -879,14 +856,11 @@ def _repair(
         outcome = _solve_model(problem, geometry, options, mode="repair",
                                seconds=min(left, 1.0 + 0.25 * left), seed=seed,
                                orientations=orientations, turnable=frozenset(turnable),
-                               start=start, feasibility_emphasis=stalls > 0,
-                               local=local or (mixed and start is not None),
-                               unbounded=_stretched_rooms(start) if mixed else frozenset())
+                               start=start, feasibility_emphasis=stalls > 0, local=local)
         if outcome is None:
             return None
         if not outcome.stretched:
-            return _final_layout(problem, geometry, outcome, deadline, seed,
-                                 local or (mixed and start is not None))
+            return _final_layout(problem, geometry, outcome, deadline, seed, local)
         _debug(f"  round {round_index}: {len(outcome.stretched)} stretched, "
                f"total {sum(outcome.stretched.values()):.2f} m: "
                + ", ".join(f"{a}-{b} {options[(a, b)]} {v:.2f}"
@@ -916,13 +890,6 @@ def _repair(
         _free_blamed_pairs(problem, geometry, options, outcome, blamed, radius, stalls)
         start = outcome
     return None
-
-
-def _stretched_rooms(outcome: _Outcome | None) -> frozenset[str]:
-    """The rooms (and obstacles) of the pairs an outcome stretched."""
-    if outcome is None:
-        return frozenset()
-    return frozenset(thing for pair in outcome.stretched for thing in pair)
 
 
 def _first_options(problem: _Problem, geometry: dict[str, Rect],
@@ -1035,7 +1002,6 @@ def construct_start(
     has_hints = use_hints and hint_geometry(drawn) is not None
     templates = None if has_hints else _TemplateSets(drawn, seed, deadline, hanging or {})
     candidates = list(_seed_geometries(drawn, rng, randomize, use_hints, templates))
-    dense = target_density(drawn) > MIXED_MIN_DENSITY
     for index, (kind, make_geometry) in enumerate(candidates):
         left = deadline - time.monotonic()
         if left <= 0.05:
@@ -1067,8 +1033,7 @@ def construct_start(
         # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
         rects = _repair(candidate_problem, geometry, time.monotonic() + share, seed,
                         max_stalls=MAX_STALLS if kind == "hints" else GRAPH_MAX_STALLS,
-                        free_defects=kind == "generated", local=kind == "hints",
-                        mixed=kind == "generated" and dense)
+                        free_defects=kind == "generated", local=kind == "hints")
         if rects is not None:
             return rects
     return None

@@ -176,17 +176,12 @@ def _corridors_lengthened(spec: Spec, sides: dict[str, tuple[float, float]],
     return lengthened
 
 
-def target_density(spec: Spec) -> float:
-    """The rooms' target area per m² of the boundary (real plans: 0.44 to 1.0)."""
-    boundary = spec.boundary
-    assert boundary is not None
-    return sum(room.target_w * room.target_h for room in spec.rooms) / (boundary.w * boundary.h)
-
-
 def drawn_sides(spec: Spec, shrink: float | None = None) -> dict[str, tuple[float, float]]:
     """(long, short) side each room is drawn with: targets shrunk to PACKING_DENSITY of
     the boundary (or by `shrink`), corridors lengthened for their rooms."""
-    density = target_density(spec)
+    boundary = spec.boundary
+    assert boundary is not None
+    density = sum(room.target_w * room.target_h for room in spec.rooms) / (boundary.w * boundary.h)
     if shrink is None:
         shrink = min(MAX_SHRINK, (PACKING_DENSITY / max(density, 1e-9)) ** 0.5)
     sides = _target_sides(spec, shrink)

@@ -4,13 +4,12 @@ far apart enter it when a solution needs them."""
 
 from __future__ import annotations
 
-import time
 from dataclasses import replace
 
-from layoutdsl.compile import construct, generate
+from layoutdsl.compile import construct
 from layoutdsl.syntax.ast import Boundary, Spec
 
-from _specs import adjacent, room, tree_spec
+from _specs import room, tree_spec
 
 
 def _orientations(geometry):
@@ -85,64 +84,3 @@ def test_hints_still_construct_with_every_far_pair_left_out(monkeypatch):
     assert rects is not None
     assert construct.hard_violations(spec, rects) == []
     assert verify(spec, construct.rects_to_layout(spec, rects)) == []
-
-
-def _door_across_the_plan(unbounded):
-    """A local round over two rooms that share a door but are drawn 9 m apart."""
-    spec = Spec("far", (room("A", 3.0, 3.0), room("B", 3.0, 3.0)), Boundary(20.0, 6.0),
-                (adjacent("A", "B"),))
-    geometry = {"A": (0.5, 1.0, 3.0, 3.0), "B": (12.5, 1.0, 3.0, 3.0)}
-    problem = construct._Problem.of(spec)
-    options = construct._first_options(problem, geometry, free_defects=False)
-    outcome = construct._solve_model(problem, geometry, options, mode="repair", seconds=10.0, seed=0,
-                                     orientations=_orientations(geometry), local=True,
-                                     unbounded=frozenset(unbounded))
-    assert outcome is not None
-    return geometry, outcome
-
-
-def test_an_unbounded_room_may_move_past_the_reach_the_others_keep():
-    geometry, outcome = _door_across_the_plan({"A"})
-    assert not outcome.stretched
-    assert abs(outcome.rects["B"][0] - geometry["B"][0]) <= construct.REACH_M + 1e-6
-    assert outcome.rects["A"][0] - geometry["A"][0] > construct.REACH_M
-    _geometry, bounded = _door_across_the_plan(())
-    assert bounded.stretched  # the door needs more than two reaches
-
-
-def test_mixed_rounds_go_local_after_the_first_with_the_stretched_rooms_unbounded(monkeypatch):
-    spec = tree_spec()
-    geometry = {r.id: (1.0 + 3.0 * i, 1.0, r.target_w, r.target_h) for i, r in enumerate(spec.rooms)}
-    problem = construct._Problem.of(spec)
-    pair = ("C0", "R3")
-    stretches = iter([{pair: 2.0}, {}])
-    calls = []
-
-    def solve(_problem, _geometry, _options, *, mode, local, unbounded, **_kwargs):
-        calls.append((local, unbounded))
-        return construct._Outcome(dict(geometry), {}, next(stretches), {}, _orientations(geometry))
-
-    monkeypatch.setattr(construct, "_solve_model", solve)
-    monkeypatch.setattr(construct, "_final_layout", lambda *args, **kwargs: "layout")
-    assert construct._repair(problem, geometry, time.monotonic() + 60.0, seed=0, mixed=True) == "layout"
-    assert calls == [(False, frozenset()), (True, frozenset(pair))]
-
-
-def test_only_generated_geometries_of_dense_plans_get_mixed_rounds(monkeypatch):
-    seen = []
-
-    def repair(_problem, _geometry, _deadline, _seed, **kwargs):
-        if kwargs["free_defects"]:  # a generated geometry (spring embeddings are not)
-            seen.append(kwargs["mixed"])
-        return None
-
-    monkeypatch.setattr(construct, "_repair", repair)
-    spec = tree_spec()  # 156 m² of rooms' targets in a 24 x 18 m boundary, 0.81 in 16 x 12
-    assert generate.target_density(spec) < construct.MIXED_MIN_DENSITY
-    construct.construct_start(spec, seed=0, deadline=time.monotonic() + 5.0)
-    sparse = set(seen)
-    seen.clear()
-    construct.construct_start(replace(spec, boundary=Boundary(16.0, 12.0)), seed=0,
-                              deadline=time.monotonic() + 5.0)
-    assert sparse == {False} and set(seen) == {True}
-    assert generate.target_density(replace(spec, boundary=Boundary(16.0, 12.0))) > construct.MIXED_MIN_DENSITY
