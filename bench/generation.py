@@ -186,7 +186,7 @@ def throughput(path: Path, minutes: float, workers: int, time_limit: float) -> d
 
     import networkx as nx
 
-    from layoutdsl.layout.difference import difference
+    from layoutdsl.layout.difference import pairwise_differences
 
     context = multiprocessing.get_context("fork")
     began = time.monotonic()
@@ -208,20 +208,22 @@ def throughput(path: Path, minutes: float, workers: int, time_limit: float) -> d
                     rows.append(row)
             time.sleep(0.05)
     elapsed = time.monotonic() - began
-    verified = [row for row in rows if row.get("verified") and row["finished"] <= 60 * minutes]
+    verified = sorted((row for row in rows if row.get("verified") and row["finished"] <= 60 * minutes),
+                      key=lambda r: (r["finished"], r["seed"]))
+    apart = pairwise_differences([row["centres"] for row in verified])
     # compile --variants redraws a variant within 0.3 of an earlier one: count what it keeps
-    in_time: list[dict] = []
-    for row in sorted(verified, key=lambda r: (r["finished"], r["seed"])):
-        if all(difference(row["centres"], kept["centres"]) >= 0.3 for kept in in_time):
-            in_time.append(row)
-    pairs = [difference(a["centres"], b["centres"]) for a, b in combinations(in_time, 2)]
+    kept: list[int] = []
+    for index in range(len(verified)):
+        if all(apart[(earlier, index)] >= 0.3 for earlier in kept):
+            kept.append(index)
+    in_time = [verified[index] for index in kept]
+    pairs = [apart[pair] for pair in combinations(kept, 2)]
     # whether a better choice than compile --variants' (keep in order) would keep more: the
     # largest set of the verified variants that differ pairwise by >= 0.3
-    apart = nx.Graph()
-    apart.add_nodes_from(range(len(verified)))
-    apart.add_edges_from((i, j) for (i, a), (j, b) in combinations(enumerate(verified), 2)
-                         if difference(a["centres"], b["centres"]) >= 0.3)
-    largest = max((len(clique) for clique in nx.find_cliques(apart)), default=0)
+    far_enough = nx.Graph()
+    far_enough.add_nodes_from(range(len(verified)))
+    far_enough.add_edges_from(pair for pair, value in apart.items() if value >= 0.3)
+    largest = max((len(clique) for clique in nx.find_cliques(far_enough)), default=0)
     return {
         "plan": path.stem,
         "workers": workers,

@@ -61,10 +61,8 @@ def run_isolated(function: Callable[..., dict], *args: Any, limit: float) -> dic
     return row
 
 
-def _kill_group(pid: int | None) -> None:
+def _kill_group(pid: int) -> None:
     """SIGKILL to the child's process group, if anything of it is left."""
-    if pid is None:
-        return
     try:
         os.killpg(pid, signal.SIGKILL)
     except (ProcessLookupError, PermissionError):
