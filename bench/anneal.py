@@ -1,0 +1,71 @@
+"""Benchmark: the sequence-pair annealer (layoutdsl.compile.anneal) on real plans' room graphs.
+
+For each building XML file in FOLDER (default ../shared/floorplans beside the repo): import it
+without hints (the default, with its L-rooms' arms drawn as rooms of their own, as the
+construction draws them), anneal seeds 0..N-1 and print one row a plan:
+
+    plan, rooms (with arms), doors, each seed's violation in metres (extent past the boundary,
+    each door's gap and missing wall) and seconds, and how many seeds reached 0
+
+A violation of 0 is a packing in which every door's rooms touch across one wall along the
+door's wall, inside the boundary: a seed geometry whose first repair LP is already a layout.
+The annealer runs its chains on all cores, so run nothing beside it; timings depend on the
+machine (the first row includes numba's compile unless its cache is warm).
+
+    python bench/anneal.py [FOLDER] [--seeds 2] [--only PATTERN] [--out FILE]
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import sys
+import time
+from pathlib import Path
+
+
+def _row(path: Path, seeds: int) -> str:
+    from layoutdsl.compile import lshape
+    from layoutdsl.compile.anneal import anneal_geometry
+    from layoutdsl.importer import import_building
+
+    spec, diagnostics = import_building(path)
+    if spec is None:
+        return f"{path.stem:36s} import failed: " + "; ".join(d.message for d in diagnostics if d.is_error)
+    drawn = lshape.seeds_spec(spec)
+    cells, zero = [], 0
+    for seed in range(seeds):
+        began = time.monotonic()
+        _, violation = anneal_geometry(drawn, seed)
+        cells.append(f"{violation:8.2f} {time.monotonic() - began:5.1f}s")
+        zero += violation <= 1e-9
+    return f"{path.stem:36s} {len(drawn.rooms):5d} {len(drawn.adjacencies):5d}  " + "  ".join(cells) + f"  {zero:4d}"
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("folder", nargs="?", default=str(Path(__file__).resolve().parents[1].parent / "shared" / "floorplans"))
+    parser.add_argument("--seeds", type=int, default=2)
+    parser.add_argument("--only", help="comma-separated substrings or patterns of plan names")
+    parser.add_argument("--out", help="also write the table to this file")
+    args = parser.parse_args(argv)
+    paths = sorted(Path(args.folder).glob("*.xml"))
+    if args.only:
+        wanted = args.only.split(",")
+        paths = [p for p in paths if any(w in p.stem or fnmatch.fnmatch(p.stem, w) for w in wanted)]
+    if not paths:
+        print(f"no building XML files in {args.folder}", file=sys.stderr)
+        return 2
+    seed_heads = "  ".join(f"seed {s}: viol m, time" for s in range(args.seeds))
+    lines = [f"{'plan':36s} {'rooms':>5s} {'doors':>5s}  {seed_heads}  zero"]
+    print(lines[0], flush=True)
+    for path in paths:
+        lines.append(_row(path, args.seeds))
+        print(lines[-1], flush=True)
+    if args.out:
+        Path(args.out).write_text("\n".join(lines) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
