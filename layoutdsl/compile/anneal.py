@@ -178,6 +178,18 @@ def _sizes(long_side, short_side, turned):
 
 
 @njit(cache=True)
+def _positions(p, q):
+    """Each room's index in P and in Q."""
+    n = p.shape[0]
+    pos_p = np.empty(n, dtype=np.int64)
+    pos_q = np.empty(n, dtype=np.int64)
+    for k in range(n):
+        pos_p[p[k]] = k
+        pos_q[q[k]] = k
+    return pos_p, pos_q
+
+
+@njit(cache=True)
 def _pack(p, q, w, h, wall, door_ptr, door_to):
     """(x, y) of a sequence pair: its tightest packing, then each room pulled towards the
     rooms it has a door to.
@@ -191,11 +203,7 @@ def _pack(p, q, w, h, wall, door_ptr, door_to):
     would place them. No sweep moves a room into another, so the packing stays one.
     """
     n = p.shape[0]
-    pos_p = np.empty(n, dtype=np.int64)
-    pos_q = np.empty(n, dtype=np.int64)
-    for k in range(n):
-        pos_p[p[k]] = k
-        pos_q[q[k]] = k
+    pos_p, pos_q = _positions(p, q)
     x = np.zeros(n)
     y = np.zeros(n)
     for k in range(n):
@@ -244,11 +252,7 @@ def _violation(p, q, w, h, x, y, edge_a, edge_b, need, on_boundary, width, heigh
     door's gap and missing wall (per_edge[k] gets door k's: the directed move picks unmet
     doors), onB rooms' distance from the boundary."""
     n = p.shape[0]
-    pos_p = np.empty(n, dtype=np.int64)
-    pos_q = np.empty(n, dtype=np.int64)
-    for k in range(n):
-        pos_p[p[k]] = k
-        pos_q[q[k]] = k
+    pos_p, pos_q = _positions(p, q)
     right = 0.0
     top = 0.0
     for i in range(n):
