@@ -127,9 +127,9 @@ def anneal_geometry(spec: Spec, seed: int) -> tuple[dict[str, Rect], float]:
     moves = min(MAX_MOVES, MOVES_PER_ROOM * len(ids))
     scale = width + height
     t_start = START_TEMPERATURE * scale
+    bounds = np.array([_bounds(RoomSizes.of(room)) for room in spec.rooms], dtype=np.float64)
     # the numba generator is seeded inside each chain; draw their seeds from the spec's seed
     # through Python's generator so nearby seeds start far apart
-    bounds = np.array([_bounds(RoomSizes.of(room)) for room in spec.rooms], dtype=np.float64)
     draw = random.Random(seed)
     kernel_seeds = [draw.randrange(2**31) for _ in range(CHAINS)]
 
