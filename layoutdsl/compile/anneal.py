@@ -44,6 +44,8 @@ from __future__ import annotations
 
 import math
 import random
+import threading
+import time
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -59,6 +61,9 @@ MOVES_PER_ROOM = 25000
 MAX_MOVES = 2_500_000
 
 CHAINS = 2
+
+CANCEL_CHECK = 2048
+"""Moves between two looks at the cancel flag (a few milliseconds)."""
 """Annealing chains run side by side (one per core of the machine the issue measures on);
 the geometry with the least violation is kept."""
 
@@ -102,11 +107,14 @@ def annealable(spec: Spec) -> bool:
             and not spec.positions and not spec.connections and not spec.clusters)
 
 
-def anneal_geometry(spec: Spec, seed: int) -> tuple[dict[str, Rect], float]:
-    """(a seed geometry grown by annealing a sequence pair, its violation in metres).
+def anneal_geometry(spec: Spec, seed: int,
+                    deadline: float | None = None) -> tuple[dict[str, Rect], float] | None:
+    """(a seed geometry grown by annealing a sequence pair, its violation in metres), or None
+    when `deadline` (a time.monotonic() instant) came first.
 
     A violation of 0 means the rectangles are inside the boundary, apart, and every door's
-    rooms touch along at least the door's wall.
+    rooms touch along at least the door's wall. The deadline only ever cuts a run off, it
+    never shortens one: a geometry returned is the same with or without it.
     """
     boundary = spec.boundary
     assert boundary is not None
@@ -133,19 +141,35 @@ def anneal_geometry(spec: Spec, seed: int) -> tuple[dict[str, Rect], float]:
     draw = random.Random(seed)
     kernel_seeds = [draw.randrange(2**31) for _ in range(CHAINS)]
 
+    # the kernel cannot read the clock: a timer raises this flag at the deadline and the
+    # chains, which look at it every CANCEL_CHECK moves, give up
+    cancel = np.zeros(1, dtype=np.int64)
+
     def chain(kernel_seed: int):
         return _anneal(long_side, short_side, bounds, edge_a, edge_b, need, door_ptr, door_to,
                        on_boundary, width, height, wall, kernel_seed, moves,
-                       t_start, END_TEMPERATURE * scale)
+                       t_start, END_TEMPERATURE * scale, cancel)
 
+    timer = None
+    if deadline is not None:
+        timer = threading.Timer(max(0.0, deadline - time.monotonic()), cancel.fill, (1,))
+        timer.daemon = True
+        timer.start()
     # the kernel releases the GIL: the chains run on the cores side by side, each with its
     # own seed (numba's generator is per thread), and the least violation wins (the first
     # chain on a tie), so the result does not depend on which thread finishes first
-    with ThreadPoolExecutor(max_workers=CHAINS) as pool:
-        results = list(pool.map(chain, kernel_seeds))
+    try:
+        with ThreadPoolExecutor(max_workers=CHAINS) as pool:
+            results = list(pool.map(chain, kernel_seeds))
+    finally:
+        if timer is not None:
+            timer.cancel()
+    if cancel[0]:
+        return None
     p, q, turned, long_side, short_side, violation = min(results, key=lambda result: result[5])
     w, h = _sizes(long_side, short_side, turned)
-    x, y = _pack(p, q, w, h, wall, door_ptr, door_to)
+    max_w, max_h = _growth_limits(long_side, short_side, turned, bounds)
+    x, y, w, h = _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h)
     geometry = {room_id: (float(x[i]), float(y[i]), float(w[i]), float(h[i]))
                 for i, room_id in enumerate(ids)}
     return geometry, float(violation)
@@ -190,19 +214,64 @@ def _positions(p, q):
 
 
 @njit(cache=True)
-def _pack(p, q, w, h, wall, door_ptr, door_to):
-    """(x, y) of a sequence pair: its tightest packing, then each room pulled towards the
-    rooms it has a door to.
+def _growth_limits(long_side, short_side, turned, bounds):
+    """(widest, tallest) each room may become with its other side as it is, within its
+    bounds and aspect ratio; the short side stays the short one."""
+    n = long_side.shape[0]
+    max_w = np.empty(n)
+    max_h = np.empty(n)
+    for i in range(n):
+        hi_long = bounds[i, 1]
+        hi_short = bounds[i, 3]
+        min_ar = bounds[i, 4]
+        max_ar = bounds[i, 5]
+        grow_long = max(long_side[i], min(hi_long, max_ar * short_side[i]))
+        grow_short = max(short_side[i], min(hi_short, long_side[i], long_side[i] / min_ar))
+        if turned[i]:
+            max_w[i] = grow_short
+            max_h[i] = grow_long
+        else:
+            max_w[i] = grow_long
+            max_h[i] = grow_short
+    return max_w, max_h
+
+
+@njit(cache=True)
+def _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, along_x):
+    """Whether a door neighbour of `a` placed before it in Q (left of it when along_x,
+    else below it) already touches it."""
+    for e in range(door_ptr[a], door_ptr[a + 1]):
+        c = door_to[e]
+        if pos_q[c] >= k:
+            continue
+        if along_x and pos_p[c] < pos_p[a]:
+            if x[c] + w[c] + wall >= x[a] - 1e-9 and min(y[a] + h[a], y[c] + h[c]) > max(y[a], y[c]):
+                return True
+        elif not along_x and pos_p[c] > pos_p[a]:
+            if y[c] + h[c] + wall >= y[a] - 1e-9 and min(x[a] + w[a], x[c] + w[c]) > max(x[a], x[c]):
+                return True
+    return False
+
+
+@njit(cache=True)
+def _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h):
+    """(x, y, w, h) of a sequence pair: its tightest packing, then each room stretched or
+    pulled towards the rooms it has a door to.
 
     The tightest packing puts each room as far left and down as the rooms left of and below
     it allow, one wall apart (longest paths in Q's order). That alone realises a door only
     where the room is pushed by its door's neighbour: of the rooms hanging below a corridor,
-    only the tallest would touch it. So a second sweep, in reverse Q order, moves each room
-    right (up) towards the door neighbours right of (above) it, as far as the rooms right of
-    (above) it allow: rooms then hang off both sides of a corridor, as the LP of the repair
-    would place them. No sweep moves a room into another, so the packing stays one.
+    only the tallest would touch it. So a second sweep, in reverse Q order, closes each
+    room's gap to the door neighbours right of (above) it, as far as the rooms right of
+    (above) it allow. A room that already meets a door neighbour on its other side grows
+    towards them (up to max_w, max_h: its bounds) and keeps that door; the rest of the gap,
+    or all of it for a room with no such door, is closed by moving the room. A rung between
+    two rails of corridors is thus lengthened to meet both rails, as the repair's LP would.
+    No sweep moves or grows a room into another, so the packing stays one.
     """
     n = p.shape[0]
+    w = w.copy()
+    h = h.copy()
     pos_p, pos_q = _positions(p, q)
     x = np.zeros(n)
     y = np.zeros(n)
@@ -220,15 +289,16 @@ def _pack(p, q, w, h, wall, door_ptr, door_to):
         y[b] = yb
     for k in range(n - 1, -1, -1):
         a = q[k]
-        # the furthest right (up) a may go: the rooms after it in Q are right of it or above
+        # the furthest right (up) a's far side may go: the rooms after it in Q are right of
+        # it or above it
         limit_x = np.inf
         limit_y = np.inf
         for j in range(k + 1, n):
             b = q[j]
             if pos_p[a] < pos_p[b]:
-                limit_x = min(limit_x, x[b] - w[a] - wall)
+                limit_x = min(limit_x, x[b] - wall)
             else:
-                limit_y = min(limit_y, y[b] - h[a] - wall)
+                limit_y = min(limit_y, y[b] - wall)
         want_x = np.inf
         want_y = np.inf
         for e in range(door_ptr[a], door_ptr[a + 1]):
@@ -236,14 +306,20 @@ def _pack(p, q, w, h, wall, door_ptr, door_to):
             if pos_q[b] < k:
                 continue
             if pos_p[a] < pos_p[b]:
-                want_x = min(want_x, x[b] - w[a] - wall)
+                want_x = min(want_x, x[b] - wall)
             else:
-                want_y = min(want_y, y[b] - h[a] - wall)
-        if want_x < np.inf:
-            x[a] = max(x[a], min(want_x, limit_x))
-        if want_y < np.inf:
-            y[a] = max(y[a], min(want_y, limit_y))
-    return x, y
+                want_y = min(want_y, y[b] - wall)
+        if want_x < np.inf and want_x > x[a] + w[a]:
+            edge = min(want_x, limit_x)
+            if _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, True):
+                w[a] = max(w[a], min(max_w[a], edge - x[a]))
+            x[a] = max(x[a], edge - w[a])
+        if want_y < np.inf and want_y > y[a] + h[a]:
+            edge = min(want_y, limit_y)
+            if _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, False):
+                h[a] = max(h[a], min(max_h[a], edge - y[a]))
+            y[a] = max(y[a], edge - h[a])
+    return x, y, w, h
 
 
 @njit(cache=True)
@@ -281,11 +357,12 @@ def _violation(p, q, w, h, x, y, edge_a, edge_b, need, on_boundary, width, heigh
 
 
 @njit(cache=True)
-def _evaluate(p, q, turned, long_side, short_side, edge_a, edge_b, need, door_ptr, door_to,
+def _evaluate(p, q, turned, long_side, short_side, bounds, edge_a, edge_b, need, door_ptr, door_to,
               on_boundary, width, height, wall, per_edge):
     """(violation, bounding box area) of a state; per_edge as in _violation."""
     w, h = _sizes(long_side, short_side, turned)
-    x, y = _pack(p, q, w, h, wall, door_ptr, door_to)
+    max_w, max_h = _growth_limits(long_side, short_side, turned, bounds)
+    x, y, w, h = _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h)
     return _violation(p, q, w, h, x, y, edge_a, edge_b, need, on_boundary, width, height,
                       wall, per_edge)
 
@@ -313,7 +390,7 @@ def _move_beside(seq, room, anchor, after):
 
 @njit(cache=True, nogil=True)
 def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, door_to, on_boundary,
-            width, height, wall, seed, moves, t_start, t_end):
+            width, height, wall, seed, moves, t_start, t_end, cancel):
     np.random.seed(seed)
     n = drawn_long.shape[0]
     long_side = drawn_long.copy()
@@ -323,7 +400,7 @@ def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, doo
     q = np.random.permutation(n)
     turned = np.random.random(n) < 0.5
     per_edge = np.zeros(m)
-    violation, box = _evaluate(p, q, turned, long_side, short_side, edge_a, edge_b, need,
+    violation, box = _evaluate(p, q, turned, long_side, short_side, bounds, edge_a, edge_b, need,
                                door_ptr, door_to, on_boundary, width, height, wall, per_edge)
     boundary_area = width * height
     cost = violation + COMPACT_WEIGHT * box / boundary_area
@@ -335,6 +412,8 @@ def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, doo
     ratio = t_end / t_start
     trial_edge = np.zeros(m)
     for step in range(moves):
+        if step % CANCEL_CHECK == 0 and cancel[0]:
+            break
         temperature = t_start * ratio ** (step / moves)
         new_p = p.copy()
         new_q = q.copy()
@@ -402,7 +481,7 @@ def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, doo
         else:
             i = np.random.randint(n)
             new_turned[i] = not new_turned[i]
-        new_violation, box = _evaluate(new_p, new_q, new_turned, new_long, new_short, edge_a,
+        new_violation, box = _evaluate(new_p, new_q, new_turned, new_long, new_short, bounds, edge_a,
                                        edge_b, need, door_ptr, door_to, on_boundary, width, height, wall, trial_edge)
         new_cost = new_violation + COMPACT_WEIGHT * box / boundary_area + RESIZE_WEIGHT * new_resized
         delta = new_cost - cost

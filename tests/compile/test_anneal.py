@@ -6,6 +6,8 @@ Geometry is checked here with plain arithmetic of its own, not with the annealer
 from __future__ import annotations
 
 import itertools
+import random
+import time
 from dataclasses import replace
 from pathlib import Path
 
@@ -15,6 +17,7 @@ import pytest
 from layoutdsl.api import load_spec
 from layoutdsl.compile.anneal import _door_lists, _pack, anneal_geometry, annealable
 from layoutdsl.compile.generate import RoomSizes
+from layoutdsl.layout.verify import verify
 from layoutdsl.syntax.ast import Obstacle
 
 SPECS = Path(__file__).resolve().parents[2] / "specs"
@@ -34,19 +37,43 @@ def _gaps(a, b):
 
 @pytest.mark.parametrize("seed", range(5))
 def test_every_sequence_pair_packs_rooms_a_wall_apart(seed):
-    """Any sequence pair, sizes and doors: the packing (with its pull towards doors) keeps
-    every two rooms at least a wall apart along some axis, and inside the first quadrant."""
+    """Any sequence pair, sizes and doors: the packing (with its pull and stretch towards
+    doors) keeps every two rooms at least a wall apart along some axis, inside the first
+    quadrant, and each room between its drawn size and the most it may grow to."""
     rng = np.random.default_rng(seed)
     n, wall = 14, 0.2
     p, q = rng.permutation(n).astype(np.int64), rng.permutation(n).astype(np.int64)
     w, h = rng.uniform(1, 6, n), rng.uniform(1, 6, n)
+    max_w, max_h = w * rng.uniform(1, 2, n), h * rng.uniform(1, 2, n)
     edges = [(i, int(rng.integers(i)), 1.0) for i in range(1, n)]
     door_ptr, door_to = _door_lists(n, edges)
-    x, y = _pack(p, q, w, h, wall, door_ptr, door_to)
-    rects = [(x[i], y[i], w[i], h[i]) for i in range(n)]
+    x, y, packed_w, packed_h = _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h)
+    assert np.all(w - TOL <= packed_w) and np.all(packed_w <= max_w + TOL)
+    assert np.all(h - TOL <= packed_h) and np.all(packed_h <= max_h + TOL)
+    rects = [(x[i], y[i], packed_w[i], packed_h[i]) for i in range(n)]
     assert min(x) >= 0 and min(y) >= 0
     for a, b in itertools.combinations(rects, 2):
         assert max(_gaps(a, b)) >= wall - TOL
+
+
+def test_a_rung_between_two_rails_is_stretched_to_meet_both():
+    """Rail 0 at the bottom, rail 2 on top of a tall room 3, rung 1 between the rails on
+    rail 0: the packing lengthens the rung (it may grow) to meet rail 2 and keeps rail 0's
+    door, where moving it up would lose that door."""
+    wall = 0.2
+    # 0 below everything (last in P, first in Q); 1 left of 3 (before it in both); 1 and 3
+    # below 2 (after it in P, before it in Q)
+    p = np.array([2, 1, 3, 0], dtype=np.int64)
+    q = np.array([0, 1, 3, 2], dtype=np.int64)
+    w = np.array([10.0, 2.0, 10.0, 3.0])
+    h = np.array([2.0, 3.0, 2.0, 5.0])
+    max_w, max_h = w.copy(), h.copy()
+    max_h[1] = 8.0
+    door_ptr, door_to = _door_lists(4, [(0, 1, 1.0), (1, 2, 1.0)])
+    x, y, packed_w, packed_h = _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h)
+    assert y[1] == pytest.approx(y[0] + h[0] + wall)  # still on rail 0
+    assert y[1] + packed_h[1] + wall == pytest.approx(y[2])  # and now up to rail 2
+    assert packed_h[1] == pytest.approx(5.0)  # as tall as room 3 beside it
 
 
 def test_a_small_office_anneals_to_a_packing_with_every_door_met():
@@ -81,6 +108,29 @@ def test_the_same_seed_gives_the_same_geometry_and_other_seeds_others():
     other, _ = anneal_geometry(spec, seed=4)
     assert first == again
     assert first != other
+
+
+def test_a_run_cut_off_by_its_deadline_returns_nothing():
+    assert anneal_geometry(_office(), seed=0, deadline=time.monotonic() - 1.0) is None
+
+
+def test_a_ladder_of_corridors_constructs_from_annealed_geometries_alone(monkeypatch):
+    """A spec with a ladder (layoutdsl.compile.ladders) starts its graph geometries with
+    annealed ones; with the greedy and spring ones taken away, the construction still finds
+    a layout, which the independent verifier accepts."""
+    from _specs import ladder_spec, tree_spec
+
+    from layoutdsl.compile import construct
+
+    spec = ladder_spec()
+    assert construct._anneals(spec) and not construct._anneals(tree_spec())
+    monkeypatch.setattr(construct, "GENERATED_TRIES", 0)
+    kinds = [kind for kind, _ in construct._seed_geometries(spec, random.Random(0), False, False,
+                                                             None, anneal=True)]
+    assert kinds == ["annealed"] * construct.ANNEAL_TRIES
+    rects = construct.construct_start(spec, seed=0, use_hints=False, deadline=time.monotonic() + 30)
+    assert rects is not None
+    assert verify(spec, construct.rects_to_layout(spec, rects)) == []
 
 
 def test_specs_with_pinned_rooms_are_left_to_the_greedy_placement():
