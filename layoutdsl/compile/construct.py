@@ -980,6 +980,7 @@ def construct_start(
     randomize: bool = False,
     use_hints: bool = True,
     hanging: Mapping[str, float] | None = None,
+    anneal: bool = True,
 ) -> dict[str, Rect] | None:
     """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
 
@@ -989,7 +990,9 @@ def construct_start(
     from the room graph (layoutdsl.compile.generate), then spring embeddings. `randomize` (hint-based
     variants) perturbs the hints from `seed`; the graph geometries are always drawn from it.
     `hanging` (a part of a larger spec, such as a cycle block) is the area of the rooms that
-    hang off each room outside the part: the part leaves them space.
+    hang off each room outside the part: the part leaves them space. `anneal`: graph
+    geometries may include annealed ones (_anneals); a cycle block solved as a template
+    does without, its greedy tries and ladder drawing being quicker for a few rooms.
     """
     if spec.boundary is None or not spec.rooms:
         return None
@@ -1001,12 +1004,16 @@ def construct_start(
     drawn = lshape.seeds_spec(spec)
     has_hints = use_hints and hint_geometry(drawn) is not None
     templates = None if has_hints else _TemplateSets(drawn, seed, deadline, hanging or {})
-    candidates = list(_seed_geometries(drawn, rng, randomize, use_hints, templates))
+    candidates = list(_seed_geometries(drawn, rng, randomize, use_hints, templates,
+                                       anneal=anneal and _anneals(drawn)))
     for index, (kind, make_geometry) in enumerate(candidates):
         left = deadline - time.monotonic()
         if left <= 0.05:
             return None
-        geometry = _cover_points(spec, make_geometry())
+        made = make_geometry(deadline) if kind == "annealed" else make_geometry()
+        if made is None:
+            continue  # an annealed geometry too far from a layout to repair, or out of time
+        geometry = _cover_points(spec, made)
         # making it may have taken a while (solving the cycle blocks): the repair's share
         # is of the time left now, so the construction keeps its deadline
         left = deadline - time.monotonic()
@@ -1023,7 +1030,7 @@ def construct_start(
         # many short tries (measured: a fresh draw beats a long repair of a stuck one)
         if index == len(candidates) - 1:
             share = left
-        elif kind == "hints":
+        elif kind in ("hints", "annealed"):
             share = 0.5 * left
         elif kind == "generated":
             share = min(left, max(GENERATED_TRY_SECONDS, GENERATED_TRY_SHARE * left))
@@ -1032,7 +1039,7 @@ def construct_start(
         _debug(f"geometry {index} ({kind}): {share:.1f}s")
         # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
         rects = _repair(candidate_problem, geometry, time.monotonic() + share, seed,
-                        max_stalls=MAX_STALLS if kind == "hints" else GRAPH_MAX_STALLS,
+                        max_stalls=MAX_STALLS if kind in ("hints", "annealed") else GRAPH_MAX_STALLS,
                         free_defects=kind == "generated", local=kind == "hints")
         if rects is not None:
             return rects
@@ -1131,7 +1138,7 @@ def block_templates(spec: Spec, seed: int, deadline: float,
         rungs = set(ladder[2]) if ladder else set()
         alone = _with_long_sides(alone, {r: v for r, v in lengths.items() if r not in rungs})
         rects = construct_start(_with_shapes(alone, shared), seed=seed,
-                                use_hints=False, deadline=time.monotonic() + share,
+                                use_hints=False, deadline=time.monotonic() + share, anneal=False,
                                 hanging=_hanging_areas(spec, block, hanging or {}, sides))
         _debug(f"block of {len(block)} rooms: {'solved' if rects else 'not solved'}")
         if rects is None and len(parts) > 1:
@@ -1248,11 +1255,16 @@ class _TemplateSets:
 
     def __init__(self, spec: Spec, seed: int, deadline: float, hanging: Mapping[str, float] | None = None):
         self.spec, self.seed, self.deadline, self.hanging = spec, seed, deadline, hanging or {}
-        began = time.monotonic()
-        self.sets = [block_templates(spec, seed, deadline, hanging)]
-        self.first_seconds = time.monotonic() - began
+        self.sets: list[list[dict[str, Rect]]] = []
+        self.first_seconds = 0.0
 
     def get(self, index: int) -> list[dict[str, Rect]]:
+        # the first set is solved when the first greedy geometry needs it (annealed
+        # geometries, which may come first, need none), with BLOCK_SHARE of the time left
+        if not self.sets:
+            began = time.monotonic()
+            self.sets.append(block_templates(self.spec, self.seed, self.deadline, self.hanging))
+            self.first_seconds = time.monotonic() - began
         while len(self.sets) <= index:
             budget = BLOCK_MIN_SECONDS + TEMPLATE_RESOLVE_FACTOR * self.first_seconds
             deadline = min(self.deadline, time.monotonic() + budget / BLOCK_SHARE)
@@ -1269,7 +1281,7 @@ TEMPLATE_RESOLVE_FACTOR = 2.0
 
 
 def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints: bool = True,
-                     templates: _TemplateSets | None = None):
+                     templates: _TemplateSets | None = None, anneal: bool = False):
     """(kind, maker) of each seed geometry to try, best first; each is built when needed."""
     has_hints = use_hints and hint_geometry(spec) is not None
     makers = []
@@ -1290,6 +1302,8 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints:
     # rooms): 3 of 6 constructed alternating one to one, 4 of 6 without any spring try
     every = 1 if len(spec.rooms) < SPRING_ROOMS else SPRING_EVERY
     graph_tries = 0
+    if anneal and not has_hints:
+        makers += [("annealed", lambda deadline: _annealed_geometry(spec, rng, deadline))] * ANNEAL_TRIES
     for index in range(GENERATED_TRIES):
         makers.append(("generated", lambda index=index: generate_geometry(
             spec, rng, templates=templates.get(index) if templates else ())))
@@ -1297,6 +1311,56 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints:
             graph_tries += 1
             makers.append(("graph", lambda: construct_geometry(spec, rng)))
     return makers
+
+
+ANNEAL_BLOCK_ROOMS = 12
+"""Rooms in the largest cycle block from which graph geometries start with annealed ones
+(as does a block with a ladder of corridors, layoutdsl.compile.ladders).
+
+The greedy placement and its cycle-block templates construct every real plan whose blocks
+have at most 11 rooms and no ladder, most within a second or two, faster than one annealing
+run (school_wilbraham, a 10-room block: 0.4 s greedy, 12 s annealed). It constructs none of
+office_OfficePlan (a 9-room ladder), office_floor-1024x523 (a 14-room block) and
+school_stjoseph_scatholichighschool (27) in 60 s."""
+
+ANNEAL_TRIES = 4
+"""Annealed geometries tried first on such plans, before the greedy ones: the greedy
+placement found none of their layouts in any measured run, and what decides whether an
+annealing run lands close enough to repair is its seed (office_OfficePlan, 12 runs of two
+chains: 1.7 m to 26.7 m), so several runs beat one long one."""
+
+ANNEAL_REPAIR_M = 6.0
+"""Violation (metres, layoutdsl.compile.anneal) up to which an annealed geometry is worth
+its repair. Measured on office_OfficePlan: annealed geometries 2.2 m from a layout
+repaired in 0.5 s, 13.4 m stalled for 34 s; office_floor-1024x523 repaired from 2.3 m."""
+
+
+def _anneals(spec: Spec) -> bool:
+    """Whether graph geometries of this spec include annealed ones: the annealer is
+    installed, handles the spec, and the spec has a cycle block of ANNEAL_BLOCK_ROOMS or a
+    ladder."""
+    try:
+        from layoutdsl.compile.anneal import annealable
+    except ImportError:  # numba is an optional dependency ('layoutdsl[anneal]')
+        return False
+    if not annealable(spec):
+        return False
+    blocks = cycle_blocks(spec)
+    return (max(map(len, blocks), default=0) >= ANNEAL_BLOCK_ROOMS
+            or any(find_ladder(block_spec(spec, block)) for block in blocks))
+
+
+def _annealed_geometry(spec: Spec, rng: random.Random, deadline: float) -> dict[str, Rect] | None:
+    """A sequence-pair annealed geometry close enough to a layout to repair, else None."""
+    from layoutdsl.compile.anneal import anneal_geometry
+
+    result = anneal_geometry(spec, rng.randrange(2**31), deadline)
+    if result is None:
+        _debug("annealed geometry: out of time")
+        return None
+    geometry, violation = result
+    _debug(f"annealed geometry: {violation:.2f} m from a layout")
+    return geometry if violation <= ANNEAL_REPAIR_M else None
 
 
 def _cover_points(spec: Spec, geometry: dict[str, Rect]) -> dict[str, Rect]:
