@@ -26,14 +26,16 @@ it right beside its neighbour, on a random side. A violation of 0 is a packing t
 every door inside the boundary: the relation LP of the construction's repair
 (layoutdsl.compile.construct) is then feasible from its first round.
 
-Status (bench/anneal.py, bench/results/anneal.txt): the annealer reaches 0 on most plans
-without cycles in seconds, but not on the dense plans with cycles it was built for
-(office_OfficePlan 10-15 m left after ~6 s, school_stjoseph_scatholichighschool 44-61 m
-after ~50 s). Tried inside the construction, before or between the greedy draws, it found no
-layout for office_OfficePlan in 60 s, and it takes time the greedy draws use well on the
-other plans, so `compile` does not call it yet. What the measurements point at: the ladder
-of corridors (two rails and their rungs) is what stays unmet; placing each cycle block as
-one solved piece, as the greedy placement does with its templates, is the next step.
+Status (bench/anneal.py, bench/results/anneal.txt and generation-annealed.txt): the annealer
+reaches 0 on most plans without cycles in seconds; on the dense plans with cycles it was built
+for, where the run ends depends mostly on its seed (office_OfficePlan, 12 runs: 1.7 m to 26.7 m
+after ~10 s). A run that ends within a few metres is repaired by the construction in a second
+or so. So `compile` (layoutdsl.compile.construct._anneals) starts from annealed geometries
+only where the greedy placement never succeeded: plans with a ladder of corridors or a cycle
+block of 12 or more rooms. That gives office_OfficePlan a layout at some seeds (1 of 6
+measured), not yet office_floor-1024x523 (one run takes ~30 s) or
+school_stjoseph_scatholichighschool (~70 s, 24-56 m left). What stays unmet is the ladder's
+rungs meeting both rails; placing each solved cycle block as one piece is the next step.
 
 The number of moves is fixed by the spec's size, never by the clock, and each chain is
 seeded: the same seed gives the same geometry. Needs numba (`pip install
