@@ -1336,18 +1336,20 @@ repaired in 0.5 s, 13.4 m stalled for 34 s; office_floor-1024x523 repaired from 
 
 
 def _anneals(spec: Spec) -> bool:
-    """Whether graph geometries of this spec include annealed ones: the annealer is
-    installed, handles the spec, and the spec has a cycle block of ANNEAL_BLOCK_ROOMS or a
-    ladder."""
+    """Whether graph geometries of this spec include annealed ones: the spec has a cycle
+    block of ANNEAL_BLOCK_ROOMS or a ladder, the annealer is installed and handles it."""
+    blocks = cycle_blocks(spec)
+    if not (max(map(len, blocks), default=0) >= ANNEAL_BLOCK_ROOMS
+            or any(find_ladder(block_spec(spec, block)) for block in blocks)):
+        return False
+    # imported only for such specs: numba takes ~0.7 s to import, a share of a small
+    # variant's time limit (measured: `compile --variants 2` of a 3-room spec at 3 s each
+    # found nothing on a busy machine when every construction imported it)
     try:
         from layoutdsl.compile.anneal import annealable
     except ImportError:  # numba is an optional dependency ('layoutdsl[anneal]')
         return False
-    if not annealable(spec):
-        return False
-    blocks = cycle_blocks(spec)
-    return (max(map(len, blocks), default=0) >= ANNEAL_BLOCK_ROOMS
-            or any(find_ladder(block_spec(spec, block)) for block in blocks))
+    return annealable(spec)
 
 
 def _annealed_geometry(spec: Spec, rng: random.Random, deadline: float) -> dict[str, Rect] | None:
