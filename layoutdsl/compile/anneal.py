@@ -63,11 +63,11 @@ MOVES_PER_ROOM = 25000
 MAX_MOVES = 2_500_000
 
 CHAINS = 2
+"""Annealing chains run side by side (one per core of the machine the issue measures on);
+the geometry with the least violation is kept."""
 
 CANCEL_CHECK = 2048
 """Moves between two looks at the cancel flag (a few milliseconds)."""
-"""Annealing chains run side by side (one per core of the machine the issue measures on);
-the geometry with the least violation is kept."""
 
 ADJACENCY_WEIGHT = 1.0
 """Per metre of gap between a door's rooms, or of missing shared wall."""

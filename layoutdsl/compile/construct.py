@@ -1004,13 +1004,15 @@ def construct_start(
     drawn = lshape.seeds_spec(spec)
     has_hints = use_hints and hint_geometry(drawn) is not None
     templates = None if has_hints else _TemplateSets(drawn, seed, deadline, hanging or {})
+    # asked only without hints: _anneals may import numba, which hint geometries never use
+    anneal = anneal and not has_hints and _anneals(drawn)
     candidates = list(_seed_geometries(drawn, rng, randomize, use_hints, templates,
-                                       anneal=anneal and _anneals(drawn)))
+                                       anneal=anneal, deadline=deadline))
     for index, (kind, make_geometry) in enumerate(candidates):
         left = deadline - time.monotonic()
         if left <= 0.05:
             return None
-        made = make_geometry(deadline) if kind == "annealed" else make_geometry()
+        made = make_geometry()
         if made is None:
             continue  # an annealed geometry too far from a layout to repair, or out of time
         geometry = _cover_points(spec, made)
@@ -1281,8 +1283,14 @@ TEMPLATE_RESOLVE_FACTOR = 2.0
 
 
 def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints: bool = True,
-                     templates: _TemplateSets | None = None, anneal: bool = False):
-    """(kind, maker) of each seed geometry to try, best first; each is built when needed."""
+                     templates: _TemplateSets | None = None, anneal: bool = False,
+                     deadline: float | None = None):
+    """(kind, maker) of each seed geometry to try, best first; each is built when needed.
+
+    `anneal`: the graph geometries start with ANNEAL_TRIES annealed ones, each cut off at
+    `deadline` (the caller decides, with _anneals). An annealed maker returns None for a
+    geometry too far from a layout or out of time.
+    """
     has_hints = use_hints and hint_geometry(spec) is not None
     makers = []
     if has_hints and randomize:
@@ -1302,8 +1310,8 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints:
     # rooms): 3 of 6 constructed alternating one to one, 4 of 6 without any spring try
     every = 1 if len(spec.rooms) < SPRING_ROOMS else SPRING_EVERY
     graph_tries = 0
-    if anneal and not has_hints:
-        makers += [("annealed", lambda deadline: _annealed_geometry(spec, rng, deadline))] * ANNEAL_TRIES
+    if anneal:
+        makers += [("annealed", lambda: _annealed_geometry(spec, rng, deadline))] * ANNEAL_TRIES
     for index in range(GENERATED_TRIES):
         makers.append(("generated", lambda index=index: generate_geometry(
             spec, rng, templates=templates.get(index) if templates else ())))
@@ -1352,7 +1360,8 @@ def _anneals(spec: Spec) -> bool:
     return annealable(spec)
 
 
-def _annealed_geometry(spec: Spec, rng: random.Random, deadline: float) -> dict[str, Rect] | None:
+def _annealed_geometry(spec: Spec, rng: random.Random,
+                       deadline: float | None) -> dict[str, Rect] | None:
     """A sequence-pair annealed geometry close enough to a layout to repair, else None."""
     from layoutdsl.compile.anneal import anneal_geometry
 
