@@ -30,12 +30,13 @@ Status (bench/anneal.py, bench/results/anneal.txt and generation-annealed.txt): 
 reaches 0 on most plans without cycles in seconds; on the dense plans with cycles it was built
 for, where the run ends depends mostly on its seed (office_OfficePlan, 12 runs: 1.7 m to 26.7 m
 after ~10 s). A run that ends within a few metres is repaired by the construction in a second
-or so. So `compile` (layoutdsl.compile.construct._anneals) starts from annealed geometries
-only where the greedy placement never succeeded: plans with a ladder of corridors or a cycle
-block of 12 or more rooms. That gives office_OfficePlan a layout at some seeds (1 of 6
-measured), not yet office_floor-1024x523 (one run takes ~30 s) or
-school_stjoseph_scatholichighschool (~70 s, 24-56 m left). What stays unmet is the ladder's
-rungs meeting both rails; placing each solved cycle block as one piece is the next step.
+or so. So `compile` anneals every plan with cycles (layoutdsl.compile.construct._Annealing):
+`AnnealingRuns` computes runs on the cores the construction's repairs leave free, and each run
+that ends close enough is repaired as soon as it is done. That constructs school_RomainRolland1
+in 6-8 s where the greedy placement alone takes 38 s; office_OfficePlan only at some seeds,
+office_floor-1024x523 and school_stjoseph_scatholichighschool not yet. What stays unmet there is
+a ladder's rungs meeting both rails; placing each solved cycle block as one piece is the next
+step.
 
 The number of moves is fixed by the spec's size, never by the clock, and each chain is
 seeded: the same seed gives the same geometry. Needs numba (`pip install
@@ -49,6 +50,7 @@ import random
 import threading
 import time
 from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
 
 import numpy as np
 from numba import njit
@@ -65,6 +67,9 @@ MAX_MOVES = 2_500_000
 CHAINS = 2
 """Annealing chains run side by side (one per core of the machine the issue measures on);
 the geometry with the least violation is kept."""
+
+RUNS_AHEAD = 2
+"""AnnealingRuns keeps this many runs going beside the caller by default (one chain each)."""
 
 CANCEL_CHECK = 2048
 """Moves between two looks at the cancel flag (a few milliseconds)."""
@@ -97,16 +102,75 @@ END_TEMPERATURE = 0.0001
 """...times (W + H): the temperature of the last moves."""
 
 
-def annealable(spec: Spec) -> bool:
-    """Specs the annealer handles: rooms, doors, a boundary and onB, nothing pinned.
+@dataclass(frozen=True)
+class _Arrays:
+    """A spec as the kernel reads it: rooms by index, doors as index pairs."""
 
-    Obstacles, fixed positions, connection points and clusters pin rooms to places that a
-    packing into the bottom-left corner does not know about: those specs keep the greedy
-    placement, which places pinned rooms first.
-    """
-    boundary = spec.boundary
-    return (boundary is not None and len(spec.rooms) >= 2 and not boundary.obstacles
-            and not spec.positions and not spec.connections and not spec.clusters)
+    ids: list[str]
+    long_side: np.ndarray
+    short_side: np.ndarray
+    bounds: np.ndarray
+    edge_a: np.ndarray
+    edge_b: np.ndarray
+    need: np.ndarray
+    door_ptr: np.ndarray
+    door_to: np.ndarray
+    on_boundary: np.ndarray
+    width: float
+    height: float
+    wall: float
+
+    @classmethod
+    def of(cls, spec: Spec) -> _Arrays:
+        boundary = spec.boundary
+        assert boundary is not None
+        ids = [room.id for room in spec.rooms]
+        index = {room_id: i for i, room_id in enumerate(ids)}
+        sides = drawn_sides(spec)
+        utilization = spec.settings.door_utilization
+        edges = [(index[adj.a], index[adj.b], adj.door / utilization) for adj in spec.adjacencies
+                 if adj.a in index and adj.b in index]
+        door_ptr, door_to = _door_lists(len(ids), edges)
+        return cls(
+            ids=ids,
+            long_side=np.array([sides[room_id][0] for room_id in ids], dtype=np.float64),
+            short_side=np.array([sides[room_id][1] for room_id in ids], dtype=np.float64),
+            bounds=np.array([_bounds(RoomSizes.of(room)) for room in spec.rooms], dtype=np.float64),
+            edge_a=np.array([e[0] for e in edges], dtype=np.int64),
+            edge_b=np.array([e[1] for e in edges], dtype=np.int64),
+            need=np.array([e[2] for e in edges], dtype=np.float64),
+            door_ptr=door_ptr, door_to=door_to,
+            on_boundary=np.array([room.on_boundary for room in spec.rooms], dtype=np.bool_),
+            width=boundary.w, height=boundary.h, wall=spec.settings.walldim)
+
+    def chain(self, kernel_seed: int, cancel: np.ndarray):
+        """One annealing chain (the kernel releases the GIL), cut off when cancel[0] is set."""
+        moves = min(MAX_MOVES, MOVES_PER_ROOM * len(self.ids))
+        scale = self.width + self.height
+        return _anneal(self.long_side, self.short_side, self.bounds, self.edge_a, self.edge_b,
+                       self.need, self.door_ptr, self.door_to, self.on_boundary, self.width,
+                       self.height, self.wall, kernel_seed, moves, START_TEMPERATURE * scale,
+                       END_TEMPERATURE * scale, cancel)
+
+    def geometry(self, result) -> tuple[dict[str, Rect], float]:
+        """The packed rectangles of a chain's best state, and its violation."""
+        p, q, turned, long_side, short_side, violation = result
+        w, h = _sizes(long_side, short_side, turned)
+        max_w, max_h = _growth_limits(long_side, short_side, turned, self.bounds)
+        x, y, w, h = _pack(p, q, w, h, self.wall, self.door_ptr, self.door_to, max_w, max_h)
+        return ({room_id: (float(x[i]), float(y[i]), float(w[i]), float(h[i]))
+                 for i, room_id in enumerate(self.ids)}, float(violation))
+
+
+def _cancel_at(deadline: float | None, cancel: np.ndarray) -> threading.Timer | None:
+    """A timer that sets cancel[0] at `deadline`: the kernel cannot read the clock, the
+    chains look at the flag every CANCEL_CHECK moves and give up."""
+    if deadline is None:
+        return None
+    timer = threading.Timer(max(0.0, deadline - time.monotonic()), cancel.fill, (1,))
+    timer.daemon = True
+    timer.start()
+    return timer
 
 
 def anneal_geometry(spec: Spec, seed: int,
@@ -118,63 +182,73 @@ def anneal_geometry(spec: Spec, seed: int,
     rooms touch along at least the door's wall. The deadline only ever cuts a run off, it
     never shortens one: a geometry returned is the same with or without it.
     """
-    boundary = spec.boundary
-    assert boundary is not None
-    ids = [room.id for room in spec.rooms]
-    index = {room_id: i for i, room_id in enumerate(ids)}
-    sides = drawn_sides(spec)
-    long_side = np.array([sides[room_id][0] for room_id in ids], dtype=np.float64)
-    short_side = np.array([sides[room_id][1] for room_id in ids], dtype=np.float64)
-    utilization = spec.settings.door_utilization
-    edges = [(index[adj.a], index[adj.b], adj.door / utilization) for adj in spec.adjacencies
-             if adj.a in index and adj.b in index]
-    edge_a = np.array([e[0] for e in edges], dtype=np.int64)
-    edge_b = np.array([e[1] for e in edges], dtype=np.int64)
-    need = np.array([e[2] for e in edges], dtype=np.float64)
-    door_ptr, door_to = _door_lists(len(ids), edges)
-    on_boundary = np.array([room.on_boundary for room in spec.rooms], dtype=np.bool_)
-    width, height, wall = boundary.w, boundary.h, spec.settings.walldim
-    moves = min(MAX_MOVES, MOVES_PER_ROOM * len(ids))
-    scale = width + height
-    t_start = START_TEMPERATURE * scale
-    bounds = np.array([_bounds(RoomSizes.of(room)) for room in spec.rooms], dtype=np.float64)
+    arrays = _Arrays.of(spec)
     # the numba generator is seeded inside each chain; draw their seeds from the spec's seed
     # through Python's generator so nearby seeds start far apart
     draw = random.Random(seed)
     kernel_seeds = [draw.randrange(2**31) for _ in range(CHAINS)]
-
-    # the kernel cannot read the clock: a timer raises this flag at the deadline and the
-    # chains, which look at it every CANCEL_CHECK moves, give up
     cancel = np.zeros(1, dtype=np.int64)
-
-    def chain(kernel_seed: int):
-        return _anneal(long_side, short_side, bounds, edge_a, edge_b, need, door_ptr, door_to,
-                       on_boundary, width, height, wall, kernel_seed, moves,
-                       t_start, END_TEMPERATURE * scale, cancel)
-
-    timer = None
-    if deadline is not None:
-        timer = threading.Timer(max(0.0, deadline - time.monotonic()), cancel.fill, (1,))
-        timer.daemon = True
-        timer.start()
-    # the kernel releases the GIL: the chains run on the cores side by side, each with its
-    # own seed (numba's generator is per thread), and the least violation wins (the first
-    # chain on a tie), so the result does not depend on which thread finishes first
+    timer = _cancel_at(deadline, cancel)
+    # the chains run on the cores side by side, each with its own seed (numba's generator is
+    # per thread), and the least violation wins (the first chain on a tie), so the result
+    # does not depend on which thread finishes first
     try:
         with ThreadPoolExecutor(max_workers=CHAINS) as pool:
-            results = list(pool.map(chain, kernel_seeds))
+            results = list(pool.map(lambda kernel_seed: arrays.chain(kernel_seed, cancel), kernel_seeds))
     finally:
         if timer is not None:
             timer.cancel()
     if cancel[0]:
         return None
-    p, q, turned, long_side, short_side, violation = min(results, key=lambda result: result[5])
-    w, h = _sizes(long_side, short_side, turned)
-    max_w, max_h = _growth_limits(long_side, short_side, turned, bounds)
-    x, y, w, h = _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h)
-    geometry = {room_id: (float(x[i]), float(y[i]), float(w[i]), float(h[i]))
-                for i, room_id in enumerate(ids)}
-    return geometry, float(violation)
+    return arrays.geometry(min(results, key=lambda result: result[5]))
+
+
+class AnnealingRuns:
+    """Annealing runs of one spec computed ahead, on threads of their own, while the caller
+    does other work (the construction repairs its greedy geometries meanwhile).
+
+    Run k is one chain seeded with the k-th draw from `seed`, so what run k returns does not
+    depend on when it was asked for; `result(k)` waits for it. RUNS_AHEAD runs are in flight
+    at a time (`ahead`). Runs still going at `deadline` or at `close()` are cut off and give None.
+    """
+
+    def __init__(self, spec: Spec, seed: int, deadline: float | None, ahead: int = RUNS_AHEAD):
+        self.ahead = ahead
+        self.arrays = _Arrays.of(spec)
+        self.draw = random.Random(seed)
+        self.seeds: list[int] = []
+        self.cancel = np.zeros(1, dtype=np.int64)
+        self.timer = _cancel_at(deadline, self.cancel)
+        self.pool = ThreadPoolExecutor(max_workers=ahead, thread_name_prefix="layoutdsl-anneal")
+        self.futures: list = []
+        self._submit_up_to(ahead - 1)
+
+    def _submit_up_to(self, k: int) -> None:
+        while len(self.futures) <= k:
+            self.seeds.append(self.draw.randrange(2**31))
+            self.futures.append(self.pool.submit(self._run, self.seeds[-1]))
+
+    def _run(self, kernel_seed: int):
+        result = self.arrays.chain(kernel_seed, self.cancel)
+        # a chain cut off returns its best state so far, which depends on the clock
+        return None if self.cancel[0] else self.arrays.geometry(result)
+
+    def done(self, k: int) -> bool:
+        """Whether run k is over (asked for runs up to `ahead` - 1 past the last one taken)."""
+        self._submit_up_to(k)
+        return self.futures[k].done()
+
+    def result(self, k: int) -> tuple[dict[str, Rect], float] | None:
+        """Run k's (geometry, violation), or None if it was cut off."""
+        self._submit_up_to(k + self.ahead - 1)
+        return self.futures[k].result()
+
+    def close(self) -> None:
+        """Cut off the runs in flight (within CANCEL_CHECK moves) and wait for their threads."""
+        self.cancel.fill(1)
+        if self.timer is not None:
+            self.timer.cancel()
+        self.pool.shutdown(wait=True, cancel_futures=True)
 
 
 def _bounds(sizes: RoomSizes) -> tuple[float, ...]:

@@ -30,13 +30,15 @@ at most ~15 s (school_wilbraham); see bench/bench.py.
 
 from __future__ import annotations
 
+import importlib.util
 import math
 import os
 import random
 import sys
+import threading
 import time
 from dataclasses import dataclass, replace
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects, separations
 from layoutdsl.compile import lshape
@@ -45,9 +47,12 @@ from layoutdsl.compile.ladders import find_ladder, ladder_template
 from layoutdsl.syntax.ast import Room, Spec
 
 
+_LOADED = time.monotonic()
+
+
 def _debug(message: str) -> None:
     if os.environ.get("LAYOUTDSL_DEBUG_CONSTRUCT"):
-        print(message, file=sys.stderr, flush=True)
+        print(f"{time.monotonic() - _LOADED:7.2f}s {message}", file=sys.stderr, flush=True)
 
 
 SAFETY = 1e-6
@@ -433,7 +438,9 @@ def _solve_active(
                            "minimize")
     if start is not None:
         _add_start(model, start, options)
-    model.optimize()
+    # without the GIL: an annealing run beside the construction (_Annealing) needs it to
+    # enter and leave its kernel, and SCIP would otherwise hold it for the whole solve
+    model.optimizeNogil()
     status = model.getStatus()
     _debug(f"    {mode} model: {status} in "
            f"{model.getSolvingTime():.2f}s, {len(options)} pairs, {len(pairs.binaries)} free, "
@@ -830,6 +837,7 @@ def _repair(
     max_stalls: int = MAX_STALLS,
     free_defects: bool = False,
     local: bool = False,
+    give_way: Callable[[], bool] | None = None,
 ) -> dict[str, Rect] | None:
     """Relations from the geometry, repaired round by round until they admit a layout.
 
@@ -838,7 +846,8 @@ def _repair(
     round, which starts from the previous solution. Zero stretch ends the repair; a final
     LP with those relations then brings the sizes towards their targets. `local`: the
     geometry is close to a layout (the hints), and each round's moves stay local
-    (_solve_model).
+    (_solve_model). `give_way`, asked before each round: a better geometry is waiting, and
+    this repair gives up for it.
     """
     options = _first_options(problem, geometry, free_defects)
     start: _Outcome | None = None
@@ -852,6 +861,9 @@ def _repair(
     for round_index in range(len(FREE_RADII) * 3):
         left = deadline - time.monotonic()
         if left <= 0.05:
+            return None
+        if give_way is not None and give_way():
+            _debug("  gives way to an annealed geometry")
             return None
         outcome = _solve_model(problem, geometry, options, mode="repair",
                                seconds=min(left, 1.0 + 0.25 * left), seed=seed,
@@ -990,9 +1002,10 @@ def construct_start(
     from the room graph (layoutdsl.compile.generate), then spring embeddings. `randomize` (hint-based
     variants) perturbs the hints from `seed`; the graph geometries are always drawn from it.
     `hanging` (a part of a larger spec, such as a cycle block) is the area of the rooms that
-    hang off each room outside the part: the part leaves them space. `anneal`: graph
-    geometries may include annealed ones (_anneals); a cycle block solved as a template
-    does without, its greedy tries and ladder drawing being quicker for a few rooms.
+    hang off each room outside the part: the part leaves them space. `anneal`: a spec with
+    cycles also tries annealed geometries, computed beside the others (_Annealing); a cycle
+    block solved as a template does without, its greedy tries and ladder drawing being
+    quicker for a few rooms.
     """
     if spec.boundary is None or not spec.rooms:
         return None
@@ -1004,11 +1017,22 @@ def construct_start(
     drawn = lshape.seeds_spec(spec)
     has_hints = use_hints and hint_geometry(drawn) is not None
     templates = None if has_hints else _TemplateSets(drawn, seed, deadline, hanging or {})
-    # asked only without hints: _anneals may import numba, which hint geometries never use
-    anneal = anneal and not has_hints and _anneals(drawn)
-    candidates = list(_seed_geometries(drawn, rng, randomize, use_hints, templates,
-                                       anneal=anneal, deadline=deadline))
-    for index, (kind, make_geometry) in enumerate(candidates):
+    # asked only without hints: _anneal_order may import numba, which hint geometries never use
+    order = _anneal_order(drawn) if anneal and not has_hints else None
+    annealing = _Annealing(drawn, seed, deadline, order) if order else None
+    candidates = _seed_geometries(drawn, rng, randomize, use_hints, templates)
+    try:
+        return _first_repaired(spec, problem, candidates, deadline, seed, rng, annealing)
+    finally:
+        if annealing is not None:
+            annealing.close()
+
+
+def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, seed: int,
+                    rng: random.Random, annealing: _Annealing | None) -> dict[str, Rect] | None:
+    """The first seed geometry the repair turns into a layout, or None: `candidates` in turn,
+    with each annealed geometry tried as soon as its run is done (_in_turn)."""
+    for index, (kind, make_geometry, last) in enumerate(_in_turn(candidates, annealing)):
         left = deadline - time.monotonic()
         if left <= 0.05:
             return None
@@ -1030,7 +1054,7 @@ def construct_start(
                                             crossing=lshape.crossings(spec))
         # a hint geometry is the likeliest and is worth a long repair; graph geometries are
         # many short tries (measured: a fresh draw beats a long repair of a stuck one)
-        if index == len(candidates) - 1:
+        if last:
             share = left
         elif kind in ("hints", "annealed"):
             share = 0.5 * left
@@ -1042,10 +1066,39 @@ def construct_start(
         # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
         rects = _repair(candidate_problem, geometry, time.monotonic() + share, seed,
                         max_stalls=MAX_STALLS if kind in ("hints", "annealed") else GRAPH_MAX_STALLS,
-                        free_defects=kind == "generated", local=kind == "hints")
+                        free_defects=kind == "generated", local=kind == "hints",
+                        give_way=annealing.promising if annealing and kind != "annealed" else None)
         if rects is not None:
             return rects
     return None
+
+
+def _in_turn(candidates: list, annealing: _Annealing | None):
+    """(kind, maker, last) of each seed geometry to try: an annealed geometry whenever a run
+    is done, else the next of `candidates`; when those are used up, the annealing runs left,
+    waited for.
+
+    Which geometry comes next thus depends on how fast the annealing runs, as the repairs'
+    outcomes depend on their time limits. A spec without cycles never starts a run, and a
+    spec whose first geometry constructs within ANNEAL_DELAY never looks at one.
+    """
+    tried = 0
+    next_candidate = 0
+    while True:
+        if annealing is not None and tried >= 1:
+            # the first geometry failed: annealing runs on the spare cores from now on
+            annealing.start()
+        if annealing is not None and (annealing.leads() or annealing.ready()):
+            yield "annealed", annealing.take(), False
+        elif next_candidate < len(candidates):
+            kind, make_geometry = candidates[next_candidate]
+            next_candidate += 1
+            yield kind, make_geometry, next_candidate == len(candidates) and annealing is None
+        elif annealing is not None and annealing.left():
+            yield "annealed", annealing.take(), False
+        else:
+            return
+        tried += 1
 
 
 SHRINK_ORDER: tuple[bool | float, ...] = (False, True)
@@ -1283,14 +1336,9 @@ TEMPLATE_RESOLVE_FACTOR = 2.0
 
 
 def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints: bool = True,
-                     templates: _TemplateSets | None = None, anneal: bool = False,
-                     deadline: float | None = None):
+                     templates: _TemplateSets | None = None):
     """(kind, maker) of each seed geometry to try, best first; each is built when needed.
-
-    `anneal`: the graph geometries start with ANNEAL_TRIES annealed ones, each cut off at
-    `deadline` (the caller decides, with _anneals). An annealed maker returns None for a
-    geometry too far from a layout or out of time.
-    """
+    Annealed geometries (_Annealing) join them as they come (_in_turn)."""
     has_hints = use_hints and hint_geometry(spec) is not None
     makers = []
     if has_hints and randomize:
@@ -1310,8 +1358,6 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints:
     # rooms): 3 of 6 constructed alternating one to one, 4 of 6 without any spring try
     every = 1 if len(spec.rooms) < SPRING_ROOMS else SPRING_EVERY
     graph_tries = 0
-    if anneal:
-        makers += [("annealed", lambda: _annealed_geometry(spec, rng, deadline))] * ANNEAL_TRIES
     for index in range(GENERATED_TRIES):
         makers.append(("generated", lambda index=index: generate_geometry(
             spec, rng, templates=templates.get(index) if templates else ())))
@@ -1322,20 +1368,22 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints:
 
 
 ANNEAL_BLOCK_ROOMS = 12
-"""Rooms in the largest cycle block from which graph geometries start with annealed ones
-(as does a block with a ladder of corridors, layoutdsl.compile.ladders).
+"""Rooms in the largest cycle block from which annealed geometries come first (as they do
+for a block with a ladder of corridors, layoutdsl.compile.ladders).
 
 The greedy placement and its cycle-block templates construct every real plan whose blocks
-have at most 11 rooms and no ladder, most within a second or two, faster than one annealing
-run (school_wilbraham, a 10-room block: 0.4 s greedy, 12 s annealed). It constructs none of
-office_OfficePlan (a 9-room ladder), office_floor-1024x523 (a 14-room block) and
-school_stjoseph_scatholichighschool (27) in 60 s."""
+have at most 11 rooms and no ladder, most within a second or two (school_wilbraham, a 10-room
+block: 0.4 s greedy, 12 s annealed). It constructs none of office_OfficePlan (a 9-room
+ladder), office_floor-1024x523 (a 14-room block) and school_stjoseph_scatholichighschool (27)
+in 60 s."""
 
-ANNEAL_TRIES = 4
-"""Annealed geometries tried first on such plans, before the greedy ones: the greedy
-placement found none of their layouts in any measured run, and what decides whether an
-annealing run lands close enough to repair is its seed (office_OfficePlan, 12 runs of two
-chains: 1.7 m to 26.7 m), so several runs beat one long one."""
+ANNEAL_TRIES = 8
+"""Annealing runs a construction of a plan with cycles may try: what decides whether a run
+lands close enough to repair is its seed (office_OfficePlan, 12 runs of two chains: 1.7 m
+to 26.7 m), so several runs beat one long one."""
+
+ANNEAL_LEAD = 4
+"""Annealing runs tried before any greedy geometry on the plans that anneal "first"."""
 
 ANNEAL_REPAIR_M = 6.0
 """Violation (metres, layoutdsl.compile.anneal) up to which an annealed geometry is worth
@@ -1343,35 +1391,120 @@ its repair. Measured on office_OfficePlan: annealed geometries 2.2 m from a layo
 repaired in 0.5 s, 13.4 m stalled for 34 s; office_floor-1024x523 repaired from 2.3 m."""
 
 
-def _anneals(spec: Spec) -> bool:
-    """Whether graph geometries of this spec include annealed ones: the spec has a cycle
-    block of ANNEAL_BLOCK_ROOMS or a ladder, the annealer is installed and handles it."""
+def _anneal_order(spec: Spec) -> str | None:
+    """Where annealed geometries go among the graph geometries of this spec: "first" for a
+    cycle block of ANNEAL_BLOCK_ROOMS or a ladder, "beside" for smaller cycles, None for a
+    spec without cycles (the greedy placement constructs those fast), without the annealer
+    installed, or that the annealer does not handle (annealable)."""
     blocks = cycle_blocks(spec)
-    if not (max(map(len, blocks), default=0) >= ANNEAL_BLOCK_ROOMS
-            or any(find_ladder(block_spec(spec, block)) for block in blocks)):
-        return False
-    # imported only for such specs: numba takes ~0.7 s to import, a share of a small
-    # variant's time limit (measured: `compile --variants 2` of a 3-room spec at 3 s each
-    # found nothing on a busy machine when every construction imported it)
-    try:
-        from layoutdsl.compile.anneal import annealable
-    except ImportError:  # numba is an optional dependency ('layoutdsl[anneal]')
-        return False
-    return annealable(spec)
-
-
-def _annealed_geometry(spec: Spec, rng: random.Random,
-                       deadline: float | None) -> dict[str, Rect] | None:
-    """A sequence-pair annealed geometry close enough to a layout to repair, else None."""
-    from layoutdsl.compile.anneal import anneal_geometry
-
-    result = anneal_geometry(spec, rng.randrange(2**31), deadline)
-    if result is None:
-        _debug("annealed geometry: out of time")
+    # numba is an optional dependency ('layoutdsl[anneal]'), looked for but not imported
+    # here: importing it takes ~0.7 s, a share of a small variant's time limit (measured:
+    # `compile --variants 2` of a 3-room spec at 3 s each found nothing on a busy machine
+    # when every construction imported it); the annealing imports it when it starts
+    if not blocks or not annealable(spec) or importlib.util.find_spec("numba") is None:
         return None
-    geometry, violation = result
-    _debug(f"annealed geometry: {violation:.2f} m from a layout")
-    return geometry if violation <= ANNEAL_REPAIR_M else None
+    if (max(map(len, blocks)) >= ANNEAL_BLOCK_ROOMS
+            or any(find_ladder(block_spec(spec, block)) for block in blocks)):
+        return "first"
+    return "beside"
+
+
+def annealable(spec: Spec) -> bool:
+    """Specs the annealer (layoutdsl.compile.anneal) handles: rooms, doors, a boundary and
+    onB, nothing pinned.
+
+    Obstacles, fixed positions, connection points and clusters pin rooms to places that a
+    packing into the bottom-left corner does not know about: those specs keep the greedy
+    placement, which places pinned rooms first.
+    """
+    boundary = spec.boundary
+    return (boundary is not None and len(spec.rooms) >= 2 and not boundary.obstacles
+            and not spec.positions and not spec.connections and not spec.clusters)
+
+
+ANNEAL_DELAY = 2.0
+"""Seconds after which a construction of a spec with small cycle blocks starts annealing
+(at once if its first geometry fails sooner): school_wilbraham's variants mostly construct
+from their first greedy geometry in 1-2 s, and annealing beside them on the same cores
+would slow them down."""
+
+
+class _Annealing:
+    """Annealed seed geometries for one construction, computed on the spare cores.
+
+    Greedy geometries are repaired on one core while SCIP holds it; an annealing chain runs
+    without the GIL on another. Measured (no hints, seed 0): annealed geometries alone
+    construct school_RomainRolland1 in 4 s where the greedy ones take 38 s, while the greedy
+    ones construct office_floorplanLOWER and the annealed ones do not. So both run: the
+    annealing starts at once for the plans only annealing constructs ("first"), and for
+    the others ("beside") after ANNEAL_DELAY or once the first geometry has failed.
+
+    "first": the first ANNEAL_LEAD runs are waited for, on every core, before any greedy
+    geometry (which has never constructed those plans); "beside": one run at a time, on
+    the core the repairs leave.
+    """
+
+    def __init__(self, spec: Spec, seed: int, deadline: float, order: str):
+        self.spec, self.seed, self.deadline, self.order = spec, seed, deadline, order
+        self.runs = None
+        self.taken = 0
+        self.closed = False
+        self.lock = threading.Lock()
+        self.timer = threading.Timer(0.0 if order == "first" else ANNEAL_DELAY, self.start)
+        self.timer.daemon = True
+        self.timer.start()
+
+    def start(self) -> None:
+        with self.lock:
+            if self.runs is None and not self.closed:
+                from layoutdsl.compile.anneal import AnnealingRuns
+
+                self.runs = AnnealingRuns(self.spec, self.seed, self.deadline,
+                                          ahead=2 if self.order == "first" else 1)
+
+    def left(self) -> bool:
+        """Whether annealed geometries remain to try (ANNEAL_TRIES in all)."""
+        return self.taken < ANNEAL_TRIES
+
+    def leads(self) -> bool:
+        """Whether the next geometry must be an annealed one ("first", ANNEAL_LEAD runs)."""
+        return self.order == "first" and self.taken < ANNEAL_LEAD
+
+    def ready(self) -> bool:
+        """Whether the next annealing run is done."""
+        return self.left() and self.runs is not None and self.runs.done(self.taken)
+
+    def promising(self) -> bool:
+        """Whether the next annealing run is done and close enough to a layout to repair."""
+        if not self.ready():
+            return False
+        result = self.runs.result(self.taken)
+        return result is not None and result[1] <= ANNEAL_REPAIR_M
+
+    def take(self):
+        """A maker of the next run's geometry (waiting for the run): the geometry if it is
+        close enough to a layout to repair, else None."""
+        k = self.taken
+        self.taken += 1
+
+        def make() -> dict[str, Rect] | None:
+            self.start()
+            result = self.runs.result(k)
+            if result is None:
+                _debug(f"annealed geometry {k}: out of time")
+                return None
+            geometry, violation = result
+            _debug(f"annealed geometry {k}: {violation:.2f} m from a layout")
+            return geometry if violation <= ANNEAL_REPAIR_M else None
+
+        return make
+
+    def close(self) -> None:
+        with self.lock:
+            self.closed = True
+            self.timer.cancel()
+            if self.runs is not None:
+                self.runs.close()
 
 
 def _cover_points(spec: Spec, geometry: dict[str, Rect]) -> dict[str, Rect]:

@@ -15,7 +15,8 @@ import numpy as np
 import pytest
 
 from layoutdsl.api import load_spec
-from layoutdsl.compile.anneal import _door_lists, _pack, anneal_geometry, annealable
+from layoutdsl.compile.anneal import AnnealingRuns, _door_lists, _pack, anneal_geometry
+from layoutdsl.compile.construct import annealable
 from layoutdsl.compile.generate import RoomSizes
 from layoutdsl.layout.verify import verify
 from layoutdsl.syntax.ast import Obstacle
@@ -115,22 +116,47 @@ def test_a_run_cut_off_by_its_deadline_returns_nothing():
 
 
 def test_a_ladder_of_corridors_constructs_from_annealed_geometries_alone(monkeypatch):
-    """A spec with a ladder (layoutdsl.compile.ladders) starts its graph geometries with
-    annealed ones; with the greedy and spring ones taken away, the construction still finds
-    a layout, which the independent verifier accepts."""
+    """A spec with a ladder (layoutdsl.compile.ladders) anneals from the start; with the
+    greedy and spring geometries taken away, the construction still finds a layout, which
+    the independent verifier accepts."""
     from _specs import ladder_spec, tree_spec
 
     from layoutdsl.compile import construct
 
     spec = ladder_spec()
-    assert construct._anneals(spec) and not construct._anneals(tree_spec())
+    assert construct._anneal_order(spec) == "first" and construct._anneal_order(tree_spec()) is None
     monkeypatch.setattr(construct, "GENERATED_TRIES", 0)
-    kinds = [kind for kind, _ in construct._seed_geometries(spec, random.Random(0), False, False,
-                                                             None, anneal=True)]
-    assert kinds == ["annealed"] * construct.ANNEAL_TRIES
+    assert construct._seed_geometries(spec, random.Random(0), False, False) == []
     rects = construct.construct_start(spec, seed=0, use_hints=False, deadline=time.monotonic() + 30)
     assert rects is not None
     assert verify(spec, construct.rects_to_layout(spec, rects)) == []
+
+
+def test_annealing_runs_computed_ahead_are_the_runs_of_their_seeds():
+    """Run k of AnnealingRuns is one chain from the k-th seed drawn: asked in any order,
+    with or without other runs going beside it, it gives the same geometry."""
+    spec = _office()
+    runs = AnnealingRuns(spec, seed=5, deadline=None)
+    try:
+        second = runs.result(1)
+        first = runs.result(0)
+    finally:
+        runs.close()
+    again = AnnealingRuns(spec, seed=5, deadline=None)
+    try:
+        assert again.result(0) == first and again.result(1) == second
+    finally:
+        again.close()
+    assert first != second
+    geometry, violation = first
+    assert set(geometry) == {room.id for room in spec.rooms} and violation >= 0.0
+
+
+def test_annealing_runs_cut_off_by_close_or_deadline_give_nothing():
+    spec = _office()
+    runs = AnnealingRuns(spec, seed=0, deadline=time.monotonic() - 1.0)
+    assert runs.result(0) is None
+    runs.close()
 
 
 def test_specs_with_pinned_rooms_are_left_to_the_greedy_placement():
