@@ -68,8 +68,14 @@ CHAINS = 2
 """Annealing chains run side by side (one per core of the machine the issue measures on);
 the geometry with the least violation is kept."""
 
-RUNS_AHEAD = 2
-"""AnnealingRuns keeps this many runs going beside the caller by default (one chain each)."""
+FROM_GEOMETRY_MOVES_PER_ROOM = 10000
+FROM_GEOMETRY_TEMPERATURE = 0.03
+"""A run from a given geometry (a greedy placement the repair could not finish) is shorter
+and cooler than one from a random sequence pair: it only has to untangle what is there.
+Measured on office_OfficePlan (8 greedy geometries, about 3.5 s a run): 0.0-14.7 m left
+unmet, two at 0; eight runs from random sequence pairs with the same moves and temperature
+left 15-48 m, and full-length ones (25000 moves a room, 0.1) 8.7-18 m in ~10 s. Cooler
+(0.003) or longer (20000) runs did no better."""
 
 CANCEL_CHECK = 2048
 """Moves between two looks at the cancel flag (a few milliseconds)."""
@@ -143,14 +149,39 @@ class _Arrays:
             on_boundary=np.array([room.on_boundary for room in spec.rooms], dtype=np.bool_),
             width=boundary.w, height=boundary.h, wall=spec.settings.walldim)
 
-    def chain(self, kernel_seed: int, cancel: np.ndarray):
-        """One annealing chain (the kernel releases the GIL), cut off when cancel[0] is set."""
-        moves = min(MAX_MOVES, MOVES_PER_ROOM * len(self.ids))
+    def chain(self, kernel_seed: int, cancel: np.ndarray, start: dict[str, Rect] | None = None):
+        """One annealing chain (the kernel releases the GIL), cut off when cancel[0] is set:
+        from a random sequence pair, or from `start` (FROM_GEOMETRY_*)."""
         scale = self.width + self.height
+        if start is None:
+            moves, temperature = MOVES_PER_ROOM * len(self.ids), START_TEMPERATURE
+            empty = np.zeros(0, dtype=np.int64)
+            state = (empty, empty, np.zeros(0, dtype=np.bool_), np.zeros(0), np.zeros(0))
+        else:
+            moves, temperature = FROM_GEOMETRY_MOVES_PER_ROOM * len(self.ids), FROM_GEOMETRY_TEMPERATURE
+            state = self._state_of(start)
         return _anneal(self.long_side, self.short_side, self.bounds, self.edge_a, self.edge_b,
                        self.need, self.door_ptr, self.door_to, self.on_boundary, self.width,
-                       self.height, self.wall, kernel_seed, moves, START_TEMPERATURE * scale,
-                       END_TEMPERATURE * scale, cancel)
+                       self.height, self.wall, kernel_seed, min(MAX_MOVES, moves), temperature * scale,
+                       END_TEMPERATURE * scale, cancel, *state)
+
+    def _state_of(self, geometry: dict[str, Rect]):
+        """(P, Q, turned, long, short) of a geometry whose rectangles may overlap.
+
+        The sequence pair follows the centres: P by x - y, Q by x + y, so a room whose
+        centre lies within 45 degrees of straight left of another's is left of it, and so
+        on round; sides are clamped to the room's bounds.
+        """
+        ids = self.ids
+        cx = np.array([geometry[r][0] + geometry[r][2] / 2 for r in ids])
+        cy = np.array([geometry[r][1] + geometry[r][3] / 2 for r in ids])
+        w = np.array([geometry[r][2] for r in ids])
+        h = np.array([geometry[r][3] for r in ids])
+        p = np.array(sorted(range(len(ids)), key=lambda i: (cx[i] - cy[i], i)), dtype=np.int64)
+        q = np.array(sorted(range(len(ids)), key=lambda i: (cx[i] + cy[i], i)), dtype=np.int64)
+        long_side = np.clip(np.maximum(w, h), self.bounds[:, 0], self.bounds[:, 1])
+        short_side = np.minimum(np.clip(np.minimum(w, h), self.bounds[:, 2], self.bounds[:, 3]), long_side)
+        return p, q, h > w, long_side, short_side
 
     def geometry(self, result) -> tuple[dict[str, Rect], float]:
         """The packed rectangles of a chain's best state, and its violation."""
@@ -204,51 +235,105 @@ def anneal_geometry(spec: Spec, seed: int,
 
 
 class AnnealingRuns:
-    """Annealing runs of one spec computed ahead, on threads of their own, while the caller
-    does other work (the construction repairs its greedy geometries meanwhile).
+    """Annealing runs of one spec on worker threads of their own, while the caller does other
+    work (the construction repairs its greedy geometries meanwhile).
 
-    Run k is one chain seeded with the k-th draw from `seed`, so what run k returns does not
-    depend on when it was asked for; `result(k)` waits for it. RUNS_AHEAD runs are in flight
-    at a time (`ahead`). Runs still going at `deadline` or at `close()` are cut off and give None.
+    `submit(geometry)` asks for a run from that geometry; runs asked for go first. A worker
+    with nothing asked for runs one from a random sequence pair, but at most one worker at a
+    time does. Each run is one chain, seeded with the next draw from `seed` (the runs asked
+for and the random ones from two streams, so a run's seed does not depend on when a
+worker fell idle). `pop_done`
+    gives finished runs in the order they finished. Runs still going at `deadline` or at
+    `close()` are cut off and give nothing.
     """
 
-    def __init__(self, spec: Spec, seed: int, deadline: float | None, ahead: int = RUNS_AHEAD):
-        self.ahead = ahead
+    def __init__(self, spec: Spec, seed: int, deadline: float | None, workers: int = CHAINS):
         self.arrays = _Arrays.of(spec)
         self.draw = random.Random(seed)
-        self.seeds: list[int] = []
+        self.random_draw = random.Random(seed + 1)
         self.cancel = np.zeros(1, dtype=np.int64)
         self.timer = _cancel_at(deadline, self.cancel)
-        self.pool = ThreadPoolExecutor(max_workers=ahead, thread_name_prefix="layoutdsl-anneal")
-        self.futures: list = []
-        self._submit_up_to(ahead - 1)
+        self.condition = threading.Condition()
+        self.asked: list[tuple[int, dict[str, Rect]]] = []
+        self.done: list[tuple[dict[str, Rect], float, bool]] = []
+        self.busy = 0
+        self.random_busy = False
+        self.threads = [threading.Thread(target=self._work, name="layoutdsl-anneal", daemon=True)
+                        for _ in range(workers)]
+        for thread in self.threads:
+            thread.start()
 
-    def _submit_up_to(self, k: int) -> None:
-        while len(self.futures) <= k:
-            self.seeds.append(self.draw.randrange(2**31))
-            self.futures.append(self.pool.submit(self._run, self.seeds[-1]))
+    def submit(self, geometry: dict[str, Rect]) -> None:
+        """Ask for a run from `geometry` (the spec's rooms, overlaps allowed)."""
+        with self.condition:
+            self.asked.append((self.draw.randrange(2**31), geometry))
+            self.condition.notify_all()
 
-    def _run(self, kernel_seed: int):
-        result = self.arrays.chain(kernel_seed, self.cancel)
-        # a chain cut off returns its best state so far, which depends on the clock
-        return None if self.cancel[0] else self.arrays.geometry(result)
+    def _next_job(self):
+        """(kernel seed, start or None) for a free worker, or None to stop; holds the lock."""
+        while not self.cancel[0]:
+            if self.asked:
+                return self.asked.pop(0)
+            if not self.random_busy:
+                self.random_busy = True
+                return self.random_draw.randrange(2**31), None
+            self.condition.wait(0.1)
+        return None
 
-    def done(self, k: int) -> bool:
-        """Whether run k is over (asked for runs up to `ahead` - 1 past the last one taken)."""
-        self._submit_up_to(k)
-        return self.futures[k].done()
+    def _work(self) -> None:
+        while True:
+            with self.condition:
+                job = self._next_job()
+                if job is None:
+                    return
+                self.busy += 1
+            kernel_seed, start = job
+            result = self.arrays.chain(kernel_seed, self.cancel, start)
+            # a chain cut off returns its best state so far, which depends on the clock
+            finished = None if self.cancel[0] else self.arrays.geometry(result)
+            with self.condition:
+                self.busy -= 1
+                if start is None:
+                    self.random_busy = False
+                if finished is not None:
+                    self.done.append((*finished, start is not None))
+                self.condition.notify_all()
 
-    def result(self, k: int) -> tuple[dict[str, Rect], float] | None:
-        """Run k's (geometry, violation), or None if it was cut off."""
-        self._submit_up_to(k + self.ahead - 1)
-        return self.futures[k].result()
+    def pop_done(self, fit=lambda violation: True) -> tuple[dict[str, Rect], float, bool] | None:
+        """The first finished run whose violation is `fit`, dropping the unfit ones before
+        it: (geometry, violation, whether it started from a given geometry), or None."""
+        with self.condition:
+            while self.done:
+                run = self.done.pop(0)
+                if fit(run[1]):
+                    return run
+        return None
+
+    def has_done(self, fit=lambda violation: True) -> bool:
+        """Whether a finished run's violation is `fit`."""
+        with self.condition:
+            return any(fit(run[1]) for run in self.done)
+
+    def wait(self, fit, deadline: float) -> tuple[dict[str, Rect], float, bool] | None:
+        """pop_done(fit), waiting for runs to finish until `deadline`."""
+        while time.monotonic() < deadline and not self.cancel[0]:
+            run = self.pop_done(fit)
+            if run is not None:
+                return run
+            with self.condition:
+                if not self.done:
+                    self.condition.wait(min(0.5, max(0.0, deadline - time.monotonic())))
+        return None
 
     def close(self) -> None:
-        """Cut off the runs in flight (within CANCEL_CHECK moves) and wait for their threads."""
+        """Cut off the runs going (within CANCEL_CHECK moves) and wait for their threads."""
         self.cancel.fill(1)
         if self.timer is not None:
             self.timer.cancel()
-        self.pool.shutdown(wait=True, cancel_futures=True)
+        with self.condition:
+            self.condition.notify_all()
+        for thread in self.threads:
+            thread.join()
 
 
 def _bounds(sizes: RoomSizes) -> tuple[float, ...]:
@@ -466,15 +551,20 @@ def _move_beside(seq, room, anchor, after):
 
 @njit(cache=True, nogil=True)
 def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, door_to, on_boundary,
-            width, height, wall, seed, moves, t_start, t_end, cancel):
+            width, height, wall, seed, moves, t_start, t_end, cancel, start_p, start_q, start_turned,
+            start_long, start_short):
     np.random.seed(seed)
     n = drawn_long.shape[0]
-    long_side = drawn_long.copy()
-    short_side = drawn_short.copy()
     m = edge_a.shape[0]
-    p = np.random.permutation(n)
-    q = np.random.permutation(n)
-    turned = np.random.random(n) < 0.5
+    if start_p.shape[0] == n:
+        p, q, turned = start_p.copy(), start_q.copy(), start_turned.copy()
+        long_side, short_side = start_long.copy(), start_short.copy()
+    else:
+        p = np.random.permutation(n)
+        q = np.random.permutation(n)
+        turned = np.random.random(n) < 0.5
+        long_side = drawn_long.copy()
+        short_side = drawn_short.copy()
     per_edge = np.zeros(m)
     violation, box = _evaluate(p, q, turned, long_side, short_side, bounds, edge_a, edge_b, need,
                                door_ptr, door_to, on_boundary, width, height, wall, per_edge)

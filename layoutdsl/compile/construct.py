@@ -1070,13 +1070,17 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
                         give_way=annealing.promising if annealing and kind != "annealed" else None)
         if rects is not None:
             return rects
+        if annealing is not None and kind in ("generated", "graph"):
+            # annealing untangles what the repair could not (office_OfficePlan: see
+            # layoutdsl.compile.anneal.FROM_GEOMETRY_TEMPERATURE)
+            annealing.anneal_from(made)
     return None
 
 
 def _in_turn(candidates: list, annealing: _Annealing | None):
     """(kind, maker, last) of each seed geometry to try: an annealed geometry whenever a run
-    is done, else the next of `candidates`; when those are used up, the annealing runs left,
-    waited for.
+    close enough to a layout is done, else the next of `candidates`; when those are used up,
+    annealed geometries as they come.
 
     Which geometry comes next thus depends on how fast the annealing runs, as the repairs'
     outcomes depend on their time limits. A spec without cycles never starts a run, and a
@@ -1088,14 +1092,14 @@ def _in_turn(candidates: list, annealing: _Annealing | None):
         if annealing is not None and tried >= 1:
             # the first geometry failed: annealing runs on the spare cores from now on
             annealing.start()
-        if annealing is not None and (annealing.leads() or annealing.ready()):
-            yield "annealed", annealing.take(), False
+        if annealing is not None and annealing.promising():
+            yield "annealed", annealing.take, False
         elif next_candidate < len(candidates):
             kind, make_geometry = candidates[next_candidate]
             next_candidate += 1
             yield kind, make_geometry, next_candidate == len(candidates) and annealing is None
-        elif annealing is not None and annealing.left():
-            yield "annealed", annealing.take(), False
+        elif annealing is not None:
+            yield "annealed", annealing.wait, False
         else:
             return
         tried += 1
@@ -1377,14 +1381,6 @@ block: 0.4 s greedy, 12 s annealed). It constructs none of office_OfficePlan (a 
 ladder), office_floor-1024x523 (a 14-room block) and school_stjoseph_scatholichighschool (27)
 in 60 s."""
 
-ANNEAL_TRIES = 8
-"""Annealing runs a construction of a plan with cycles may try: what decides whether a run
-lands close enough to repair is its seed (office_OfficePlan, 12 runs of two chains: 1.7 m
-to 26.7 m), so several runs beat one long one."""
-
-ANNEAL_LEAD = 4
-"""Annealing runs tried before any greedy geometry on the plans that anneal "first"."""
-
 ANNEAL_REPAIR_M = 6.0
 """Violation (metres, layoutdsl.compile.anneal) up to which an annealed geometry is worth
 its repair. Measured on office_OfficePlan: annealed geometries 2.2 m from a layout
@@ -1435,19 +1431,18 @@ class _Annealing:
     Greedy geometries are repaired on one core while SCIP holds it; an annealing chain runs
     without the GIL on another. Measured (no hints, seed 0): annealed geometries alone
     construct school_RomainRolland1 in 4 s where the greedy ones take 38 s, while the greedy
-    ones construct office_floorplanLOWER and the annealed ones do not. So both run: the
-    annealing starts at once for the plans only annealing constructs ("first"), and for
-    the others ("beside") after ANNEAL_DELAY or once the first geometry has failed.
+    ones construct office_floorplanLOWER and the annealed ones do not. So both run. Every
+    greedy geometry the repair gives up on is annealed (`anneal_from`), and a worker with
+    nothing to do anneals from a random sequence pair (layoutdsl.compile.anneal.AnnealingRuns).
 
-    "first": the first ANNEAL_LEAD runs are waited for, on every core, before any greedy
-    geometry (which has never constructed those plans); "beside": one run at a time, on
-    the core the repairs leave.
+    The annealing starts at once, on two workers, for the plans the greedy placement alone
+    has never constructed ("first"); for the others ("beside"), on one worker, after
+    ANNEAL_DELAY or once the first geometry has failed.
     """
 
     def __init__(self, spec: Spec, seed: int, deadline: float, order: str):
         self.spec, self.seed, self.deadline, self.order = spec, seed, deadline, order
         self.runs = None
-        self.taken = 0
         self.closed = False
         self.lock = threading.Lock()
         self.timer = threading.Timer(0.0 if order == "first" else ANNEAL_DELAY, self.start)
@@ -1460,44 +1455,35 @@ class _Annealing:
                 from layoutdsl.compile.anneal import AnnealingRuns
 
                 self.runs = AnnealingRuns(self.spec, self.seed, self.deadline,
-                                          ahead=2 if self.order == "first" else 1)
+                                          workers=2 if self.order == "first" else 1)
 
-    def left(self) -> bool:
-        """Whether annealed geometries remain to try (ANNEAL_TRIES in all)."""
-        return self.taken < ANNEAL_TRIES
-
-    def leads(self) -> bool:
-        """Whether the next geometry must be an annealed one ("first", ANNEAL_LEAD runs)."""
-        return self.order == "first" and self.taken < ANNEAL_LEAD
-
-    def ready(self) -> bool:
-        """Whether the next annealing run is done."""
-        return self.left() and self.runs is not None and self.runs.done(self.taken)
+    def anneal_from(self, geometry: dict[str, Rect]) -> None:
+        """Anneal from a seed geometry (of the drawn spec) the repair gave up on."""
+        self.start()
+        self.runs.submit(geometry)
 
     def promising(self) -> bool:
-        """Whether the next annealing run is done and close enough to a layout to repair."""
-        if not self.ready():
-            return False
-        result = self.runs.result(self.taken)
-        return result is not None and result[1] <= ANNEAL_REPAIR_M
+        """Whether a finished run is close enough to a layout to repair."""
+        return self.runs is not None and self.runs.has_done(_repairable)
 
-    def take(self):
-        """A maker of the next run's geometry (waiting for the run): the geometry if it is
-        close enough to a layout to repair, else None."""
-        k = self.taken
-        self.taken += 1
+    def take(self) -> dict[str, Rect] | None:
+        """The first finished run close enough to a layout to repair, or None."""
+        return self._chosen(self.runs.pop_done(_repairable) if self.runs is not None else None)
 
-        def make() -> dict[str, Rect] | None:
-            self.start()
-            result = self.runs.result(k)
-            if result is None:
-                _debug(f"annealed geometry {k}: out of time")
-                return None
-            geometry, violation = result
-            _debug(f"annealed geometry {k}: {violation:.2f} m from a layout")
-            return geometry if violation <= ANNEAL_REPAIR_M else None
+    def wait(self) -> dict[str, Rect] | None:
+        """take(), waiting for runs to finish until the deadline."""
+        self.start()
+        return self._chosen(self.runs.wait(_repairable, self.deadline))
 
-        return make
+    @staticmethod
+    def _chosen(run) -> dict[str, Rect] | None:
+        if run is None:
+            _debug("annealed geometry: none close enough")
+            return None
+        geometry, violation, from_geometry = run
+        _debug(f"annealed geometry ({'from a greedy one' if from_geometry else 'random start'}): "
+               f"{violation:.2f} m from a layout")
+        return geometry
 
     def close(self) -> None:
         with self.lock:
@@ -1505,6 +1491,10 @@ class _Annealing:
             self.timer.cancel()
             if self.runs is not None:
                 self.runs.close()
+
+
+def _repairable(violation: float) -> bool:
+    return violation <= ANNEAL_REPAIR_M
 
 
 def _cover_points(spec: Spec, geometry: dict[str, Rect]) -> dict[str, Rect]:

@@ -132,31 +132,42 @@ def test_a_ladder_of_corridors_constructs_from_annealed_geometries_alone(monkeyp
     assert verify(spec, construct.rects_to_layout(spec, rects)) == []
 
 
-def test_annealing_runs_computed_ahead_are_the_runs_of_their_seeds():
-    """Run k of AnnealingRuns is one chain from the k-th seed drawn: asked in any order,
-    with or without other runs going beside it, it gives the same geometry."""
+def test_a_run_from_a_layout_keeps_every_door_met():
+    """A run asked for from a geometry starts from its sequence pair: from a packing that
+    already meets every door, the run ends with every door met too."""
     spec = _office()
-    runs = AnnealingRuns(spec, seed=5, deadline=None)
+    layout, violation = anneal_geometry(spec, seed=0)
+    assert violation == 0.0
+    runs = AnnealingRuns(spec, seed=1, deadline=time.monotonic() + 60, workers=1)
     try:
-        second = runs.result(1)
-        first = runs.result(0)
+        runs.submit(layout)
+        run = runs.wait(lambda v: True, time.monotonic() + 60)
+        while run is not None and not run[2]:  # a random-start run finished first
+            run = runs.wait(lambda v: True, time.monotonic() + 60)
     finally:
         runs.close()
-    again = AnnealingRuns(spec, seed=5, deadline=None)
-    try:
-        assert again.result(0) == first and again.result(1) == second
-    finally:
-        again.close()
-    assert first != second
-    geometry, violation = first
-    assert set(geometry) == {room.id for room in spec.rooms} and violation >= 0.0
+    geometry, violation, from_geometry = run
+    assert from_geometry and violation == 0.0
+    assert set(geometry) == {room.id for room in spec.rooms}
 
 
-def test_annealing_runs_cut_off_by_close_or_deadline_give_nothing():
+def test_idle_workers_anneal_from_random_sequence_pairs():
     spec = _office()
-    runs = AnnealingRuns(spec, seed=0, deadline=time.monotonic() - 1.0)
-    assert runs.result(0) is None
-    runs.close()
+    runs = AnnealingRuns(spec, seed=0, deadline=time.monotonic() + 60, workers=2)
+    try:
+        run = runs.wait(lambda v: True, time.monotonic() + 60)
+    finally:
+        runs.close()
+    geometry, violation, from_geometry = run
+    assert not from_geometry and violation >= 0.0 and len(geometry) == len(spec.rooms)
+
+
+def test_annealing_runs_past_their_deadline_give_nothing():
+    runs = AnnealingRuns(_office(), seed=0, deadline=time.monotonic() - 1.0)
+    try:
+        assert runs.wait(lambda v: True, time.monotonic() + 1.0) is None
+    finally:
+        runs.close()
 
 
 def test_specs_with_pinned_rooms_are_left_to_the_greedy_placement():
