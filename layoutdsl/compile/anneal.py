@@ -436,30 +436,27 @@ def _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h):
     pos_p, pos_q = _positions(p, q)
     x = np.zeros(n)
     y = np.zeros(n)
+    # the rooms left of b come before it in P, those below it after it in P: with the rooms
+    # placed so far in two prefix-maximum trees over P's positions (one of them reversed),
+    # each room's place is two O(log n) queries instead of a scan of all rooms before it
+    right_edges = np.zeros(n + 1)  # over P positions: x + w + wall
+    top_edges = np.zeros(n + 1)  # over reversed P positions: y + h + wall
     for k in range(n):
         b = q[k]
-        xb = 0.0
-        yb = 0.0
-        for j in range(k):
-            a = q[j]
-            if pos_p[a] < pos_p[b]:
-                xb = max(xb, x[a] + w[a] + wall)
-            else:
-                yb = max(yb, y[a] + h[a] + wall)
-        x[b] = xb
-        y[b] = yb
+        i = pos_p[b]
+        x[b] = _prefix_max(right_edges, i)
+        y[b] = _prefix_max(top_edges, n - 1 - i)
+        _raise(right_edges, i, x[b] + w[b] + wall)
+        _raise(top_edges, n - 1 - i, y[b] + h[b] + wall)
+    left_edges = np.full(n + 1, np.inf)  # over reversed P positions: x - wall
+    bottom_edges = np.full(n + 1, np.inf)  # over P positions: y - wall
     for k in range(n - 1, -1, -1):
         a = q[k]
+        i = pos_p[a]
         # the furthest right (up) a's far side may go: the rooms after it in Q are right of
-        # it or above it
-        limit_x = np.inf
-        limit_y = np.inf
-        for j in range(k + 1, n):
-            b = q[j]
-            if pos_p[a] < pos_p[b]:
-                limit_x = min(limit_x, x[b] - wall)
-            else:
-                limit_y = min(limit_y, y[b] - wall)
+        # it (after it in P) or above it (before it in P)
+        limit_x = _prefix_min(left_edges, n - 1 - i)
+        limit_y = _prefix_min(bottom_edges, i)
         want_x = np.inf
         want_y = np.inf
         for e in range(door_ptr[a], door_ptr[a + 1]):
@@ -480,7 +477,46 @@ def _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h):
             if _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, False):
                 h[a] = max(h[a], min(max_h[a], edge - y[a]))
             y[a] = max(y[a], edge - h[a])
+        _lower(left_edges, n - 1 - i, x[a] - wall)
+        _lower(bottom_edges, i, y[a] - wall)
     return x, y, w, h
+
+
+# Fenwick trees over positions 0..n-1 (tree[1..n]): the maximum (minimum) of the values
+# set at positions below i, and setting one. A position is set once, before it is asked.
+
+@njit(cache=True, inline="always")
+def _prefix_max(tree, i):
+    best = 0.0
+    while i > 0:
+        best = max(best, tree[i])
+        i -= i & -i
+    return best
+
+
+@njit(cache=True, inline="always")
+def _raise(tree, i, value):
+    i += 1
+    while i < tree.shape[0]:
+        tree[i] = max(tree[i], value)
+        i += i & -i
+
+
+@njit(cache=True, inline="always")
+def _prefix_min(tree, i):
+    best = np.inf
+    while i > 0:
+        best = min(best, tree[i])
+        i -= i & -i
+    return best
+
+
+@njit(cache=True, inline="always")
+def _lower(tree, i, value):
+    i += 1
+    while i < tree.shape[0]:
+        tree[i] = min(tree[i], value)
+        i += i & -i
 
 
 @njit(cache=True)

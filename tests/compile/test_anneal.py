@@ -57,6 +57,25 @@ def test_every_sequence_pair_packs_rooms_a_wall_apart(seed):
         assert max(_gaps(a, b)) >= wall - TOL
 
 
+@pytest.mark.parametrize("seed", range(5))
+def test_without_doors_each_room_sits_at_the_longest_path_from_the_origin(seed):
+    """Rooms left of b (before it in P and Q) push it right, rooms below it (after it in P,
+    before it in Q) push it up: checked by scanning every pair, as the definition says."""
+    rng = np.random.default_rng(100 + seed)
+    n, wall = 40, 0.2
+    p, q = rng.permutation(n).astype(np.int64), rng.permutation(n).astype(np.int64)
+    w, h = rng.uniform(1, 6, n), rng.uniform(1, 6, n)
+    door_ptr, door_to = _door_lists(n, [])
+    x, y, _, _ = _pack(p, q, w, h, wall, door_ptr, door_to, w, h)
+    where_p = {room: k for k, room in enumerate(p)}
+    where_q = {room: k for k, room in enumerate(q)}
+    for b in q:  # Q's order: every room pushing b is placed before it
+        left = [x[a] + w[a] + wall for a in range(n) if where_p[a] < where_p[b] and where_q[a] < where_q[b]]
+        below = [y[a] + h[a] + wall for a in range(n) if where_p[a] > where_p[b] and where_q[a] < where_q[b]]
+        assert x[b] == pytest.approx(max(left, default=0.0))
+        assert y[b] == pytest.approx(max(below, default=0.0))
+
+
 def test_a_rung_between_two_rails_is_stretched_to_meet_both():
     """Rail 0 at the bottom, rail 2 on top of a tall room 3, rung 1 between the rails on
     rail 0: the packing lengthens the rung (it may grow) to meet rail 2 and keeps rail 0's
