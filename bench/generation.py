@@ -161,8 +161,9 @@ def summary(rows: list[dict]) -> str:
             f"fill >= 0.8 x original: {fill_ok}")
 
 
-def _variant_batch(path: str, seeds: list[int], time_limit: float) -> list[dict]:
-    """Compile one variant per seed (graph source, deterministic stopping rule) in this process."""
+def _variant_batch(path: str, seeds: list[int], time_limit: float, spare_cores: bool = True) -> list[dict]:
+    """Compile one variant per seed (graph source, deterministic stopping rule) in this process;
+    `spare_cores` off as in `compile --variants` with more than one worker."""
     from layoutdsl.compile.variants import _compile_variant
     from layoutdsl.solve import SolveOptions
 
@@ -171,7 +172,7 @@ def _variant_batch(path: str, seeds: list[int], time_limit: float) -> list[dict]
     for seed in seeds:
         began = time.monotonic()
         layout, _ = _compile_variant(spec, seed, SolveOptions(time_limit=time_limit, quiet=True),
-                                     None, "graph")
+                                     None, "graph", spare_cores=spare_cores)
         row = {"seed": seed, "seconds": round(time.monotonic() - began, 3)}
         if layout is not None:
             row.update(_layout_row(spec, layout, area, original_fill, centres))
@@ -197,7 +198,8 @@ def throughput(path: Path, minutes: float, workers: int, time_limit: float) -> d
         pending = []
         while time.monotonic() < end or pending:
             while len(pending) < workers and time.monotonic() < end:
-                pending.append(pool.apply_async(_variant_batch, (str(path), [next_seed], time_limit)))
+                pending.append(pool.apply_async(_variant_batch, (str(path), [next_seed], time_limit,
+                                                                 workers == 1)))
                 next_seed += 1
             done = [job for job in pending if job.ready()]
             for job in done:

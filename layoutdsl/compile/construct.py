@@ -993,6 +993,7 @@ def construct_start(
     use_hints: bool = True,
     hanging: Mapping[str, float] | None = None,
     anneal: bool = True,
+    spare_cores: bool = True,
 ) -> dict[str, Rect] | None:
     """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
 
@@ -1005,7 +1006,8 @@ def construct_start(
     hang off each room outside the part: the part leaves them space. `anneal`: a spec with
     cycles also tries annealed geometries, computed beside the others (_Annealing); a cycle
     block solved as a template does without, its greedy tries and ladder drawing being
-    quicker for a few rooms.
+    quicker for a few rooms. `spare_cores` off (every core already runs a construction, as
+    `compile --variants` does): only the plans the greedy placement never constructs anneal.
     """
     if spec.boundary is None or not spec.rooms:
         return None
@@ -1019,6 +1021,10 @@ def construct_start(
     templates = None if has_hints else _TemplateSets(drawn, seed, deadline, hanging or {})
     # asked only without hints: _anneal_order may import numba, which hint geometries never use
     order = _anneal_order(drawn) if anneal and not has_hints else None
+    if order == "beside" and not spare_cores:
+        # measured on school_wilbraham, `--throughput` with 2 workers on 2 cores: 10
+        # variants a minute annealing beside the repairs, 14 without
+        order = None
     annealing = _Annealing(drawn, seed, deadline, order) if order else None
     candidates = _seed_geometries(drawn, rng, randomize, use_hints, templates)
     try:

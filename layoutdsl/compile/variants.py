@@ -129,10 +129,12 @@ def _solve_variant(job: tuple[int, object, tuple[str, float, float] | None, str]
     variant_seed, options, point, source = job
     spec = _SPEC_FOR_WORKERS
     assert spec is not None
-    return _compile_variant(spec, variant_seed, options, point, source)
+    # one variant per core: no core is spare for annealing beside the construction
+    return _compile_variant(spec, variant_seed, options, point, source, spare_cores=False)
 
 
-def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str = "graph"):
+def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str = "graph",
+                     spare_cores: bool = True):
     from layoutdsl.compile import compile_spec
     from layoutdsl.compile.construct import construct_start
     from layoutdsl.compile.pipeline import START_SHARE
@@ -158,7 +160,8 @@ def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str 
         # school_wilbraham: 1.3 of a variant's 5.1 s); the spec's feasibility is not in
         # question for a variant, and one that finds no start is redrawn
         rects = construct_start(variant_spec, seed=variant_seed, randomize=from_hints,
-                                use_hints=from_hints, deadline=time.monotonic() + START_SHARE * limit)
+                                use_hints=from_hints, deadline=time.monotonic() + START_SHARE * limit,
+                                spare_cores=spare_cores)
         if rects is None:
             continue
         variant_options = replace(options, time_limit=max(0.5, limit - (time.monotonic() - attempt_began)),
