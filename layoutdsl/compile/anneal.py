@@ -26,17 +26,16 @@ it right beside its neighbour, on a random side. A violation of 0 is a packing t
 every door inside the boundary: the relation LP of the construction's repair
 (layoutdsl.compile.construct) is then feasible from its first round.
 
-Status (bench/anneal.py, bench/results/anneal.txt and generation-annealed.txt): the annealer
-reaches 0 on most plans without cycles in seconds; on the dense plans with cycles it was built
-for, where the run ends depends mostly on its seed (office_OfficePlan, 12 runs: 1.7 m to 26.7 m
-after ~10 s). A run that ends within a few metres is repaired by the construction in a second
-or so. So `compile` anneals every plan with cycles (layoutdsl.compile.construct._Annealing):
-`AnnealingRuns` computes runs on the cores the construction's repairs leave free, and each run
-that ends close enough is repaired as soon as it is done. That constructs school_RomainRolland1
-in 6-8 s where the greedy placement alone takes 38 s; office_OfficePlan only at some seeds,
-office_floor-1024x523 and school_stjoseph_scatholichighschool not yet. What stays unmet there is
-a ladder's rungs meeting both rails; placing each solved cycle block as one piece is the next
-step.
+Status (bench/anneal.py, bench/results/anneal.txt, generation-60s.txt): from a random sequence
+pair the annealer reaches 0 on most plans without cycles in seconds; on the dense plans with
+cycles it was built for, where a run ends depends mostly on its seed (office_OfficePlan, 12
+runs: 1.7 m to 26.7 m after ~10 s). Started from a greedy placement the construction's repair
+gave up on, a short cool run untangles it far more often (FROM_GEOMETRY_TEMPERATURE). So
+`compile` anneals every plan with cycles beside its greedy placement
+(layoutdsl.compile.construct._Annealing): `AnnealingRuns` runs on the cores the repairs
+leave, and a run that ends within a few metres of a layout is repaired next. That constructs
+office_OfficePlan at seeds 0-3 and school_RomainRolland1 in ~5 s (38 s greedy alone);
+office_floor-1024x523 only at some seeds, school_stjoseph_scatholichighschool not yet.
 
 The number of moves is fixed by the spec's size, never by the clock, and each chain is
 seeded: the same seed gives the same geometry. Needs numba (`pip install
@@ -444,19 +443,19 @@ def _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h):
     for k in range(n):
         b = q[k]
         i = pos_p[b]
-        x[b] = _prefix_max(right_edges, i)
-        y[b] = _prefix_max(top_edges, n - 1 - i)
+        x[b] = _prefix_max(right_edges, i, 0.0)
+        y[b] = _prefix_max(top_edges, n - 1 - i, 0.0)
         _raise(right_edges, i, x[b] + w[b] + wall)
         _raise(top_edges, n - 1 - i, y[b] + h[b] + wall)
-    left_edges = np.full(n + 1, np.inf)  # over reversed P positions: x - wall
-    bottom_edges = np.full(n + 1, np.inf)  # over P positions: y - wall
+    left_edges = np.full(n + 1, -np.inf)  # over reversed P positions: -(x - wall)
+    bottom_edges = np.full(n + 1, -np.inf)  # over P positions: -(y - wall)
     for k in range(n - 1, -1, -1):
         a = q[k]
         i = pos_p[a]
         # the furthest right (up) a's far side may go: the rooms after it in Q are right of
         # it (after it in P) or above it (before it in P)
-        limit_x = _prefix_min(left_edges, n - 1 - i)
-        limit_y = _prefix_min(bottom_edges, i)
+        limit_x = -_prefix_max(left_edges, n - 1 - i, -np.inf)
+        limit_y = -_prefix_max(bottom_edges, i, -np.inf)
         want_x = np.inf
         want_y = np.inf
         for e in range(door_ptr[a], door_ptr[a + 1]):
@@ -477,17 +476,18 @@ def _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h):
             if _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, False):
                 h[a] = max(h[a], min(max_h[a], edge - y[a]))
             y[a] = max(y[a], edge - h[a])
-        _lower(left_edges, n - 1 - i, x[a] - wall)
-        _lower(bottom_edges, i, y[a] - wall)
+        _raise(left_edges, n - 1 - i, -(x[a] - wall))
+        _raise(bottom_edges, i, -(y[a] - wall))
     return x, y, w, h
 
 
-# Fenwick trees over positions 0..n-1 (tree[1..n]): the maximum (minimum) of the values
-# set at positions below i, and setting one. A position is set once, before it is asked.
+# A Fenwick tree over positions 0..n-1 (tree[1..n]): the largest value set at a position
+# below i (or `floor`), and setting one. A position is set once, before it is asked. The
+# packing's minima are maxima of negated values, which is exact in floating point.
 
 @njit(cache=True, inline="always")
-def _prefix_max(tree, i):
-    best = 0.0
+def _prefix_max(tree, i, floor):
+    best = floor
     while i > 0:
         best = max(best, tree[i])
         i -= i & -i
@@ -499,23 +499,6 @@ def _raise(tree, i, value):
     i += 1
     while i < tree.shape[0]:
         tree[i] = max(tree[i], value)
-        i += i & -i
-
-
-@njit(cache=True, inline="always")
-def _prefix_min(tree, i):
-    best = np.inf
-    while i > 0:
-        best = min(best, tree[i])
-        i -= i & -i
-    return best
-
-
-@njit(cache=True, inline="always")
-def _lower(tree, i, value):
-    i += 1
-    while i < tree.shape[0]:
-        tree[i] = min(tree[i], value)
         i += i & -i
 
 
