@@ -1018,9 +1018,14 @@ def construct_start(
     # an L-room's arm is drawn as a room of its own (lshape.seeds_spec)
     drawn = lshape.seeds_spec(spec)
     has_hints = use_hints and hint_geometry(drawn) is not None
-    templates = None if has_hints else _TemplateSets(drawn, seed, deadline, hanging or {})
-    # asked only without hints: _anneal_order may import numba, which hint geometries never use
-    order = _anneal_order(drawn) if anneal and not has_hints else None
+    # the graph geometries that follow the hints' get the cycle blocks solved too (lazily:
+    # not at all when a hint geometry constructs)
+    templates = _TemplateSets(drawn, seed, deadline, hanging or {})
+    order = _anneal_order(drawn) if anneal else None
+    if order == "first" and has_hints:
+        # the hints construct most plans in well under a second: no core is taken from them
+        # before ANNEAL_DELAY or their first failure
+        order = "beside"
     if order == "beside" and not spare_cores:
         # measured on school_wilbraham, `--throughput` with 2 workers on 2 cores: 10
         # variants a minute annealing beside the repairs, 14 without
@@ -1073,7 +1078,7 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
         rects = _repair(candidate_problem, geometry, time.monotonic() + share, seed,
                         max_stalls=MAX_STALLS if kind in ("hints", "annealed") else GRAPH_MAX_STALLS,
                         free_defects=kind == "generated", local=kind == "hints",
-                        give_way=annealing.promising if annealing and kind != "annealed" else None)
+                        give_way=annealing.promising if annealing and kind in ("generated", "graph") else None)
         if rects is not None:
             return rects
         if annealing is not None and kind in ("generated", "graph"):
@@ -1086,7 +1091,8 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
 def _in_turn(candidates: list, annealing: _Annealing | None):
     """(kind, maker, last) of each seed geometry to try: an annealed geometry whenever a run
     close enough to a layout is done, else the next of `candidates`; when those are used up,
-    annealed geometries as they come.
+    annealed geometries as they come. The hints' geometries come first all the same: a
+    spec with hints asks for its own arrangement.
 
     Which geometry comes next thus depends on how fast the annealing runs, as the repairs'
     outcomes depend on their time limits. A spec without cycles never starts a run, and a
@@ -1098,7 +1104,8 @@ def _in_turn(candidates: list, annealing: _Annealing | None):
         if annealing is not None and tried >= 1:
             # the first geometry failed: annealing runs on the spare cores from now on
             annealing.start()
-        if annealing is not None and annealing.promising():
+        hints_next = next_candidate < len(candidates) and candidates[next_candidate][0] == "hints"
+        if annealing is not None and not hints_next and annealing.promising():
             yield "annealed", annealing.take, False
         elif next_candidate < len(candidates):
             kind, make_geometry = candidates[next_candidate]

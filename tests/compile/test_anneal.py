@@ -194,3 +194,35 @@ def test_specs_with_pinned_rooms_are_left_to_the_greedy_placement():
     assert annealable(spec)
     boundary = replace(spec.boundary, obstacles=(Obstacle("O1", 0.0, 0.0, 1.0, 1.0),))
     assert not annealable(replace(spec, boundary=boundary))
+
+
+class _Finished:
+    """An annealing with a finished run close enough to a layout, every time it is asked."""
+
+    def __init__(self):
+        self.started = 0
+
+    def start(self):
+        self.started += 1
+
+    def promising(self):
+        return True
+
+    def take(self):
+        return None
+
+
+def test_the_hints_geometries_come_before_any_annealed_one():
+    """A spec with hints asks for its own arrangement: its hint geometries are tried first
+    even when an annealed geometry is waiting; after them, a finished annealed geometry goes
+    before the next greedy one."""
+    from layoutdsl.compile import construct
+
+    def maker():
+        return None
+
+    candidates = [("hints", maker), ("hints", maker), ("generated", maker), ("graph", maker)]
+    kinds = [kind for kind, _, _ in itertools.islice(construct._in_turn(candidates, _Finished()), 5)]
+    assert kinds == ["hints", "hints", "annealed", "annealed", "annealed"]
+    kinds = [kind for kind, _, last in construct._in_turn(candidates, None)]
+    assert kinds == ["hints", "hints", "generated", "graph"]
