@@ -185,9 +185,8 @@ class _Arrays:
     def geometry(self, result) -> tuple[dict[str, Rect], float]:
         """The packed rectangles of a chain's best state, and its violation."""
         p, q, turned, long_side, short_side, violation = result
-        w, h = _sizes(long_side, short_side, turned)
-        max_w, max_h = _growth_limits(long_side, short_side, turned, self.bounds)
-        x, y, w, h = _pack(p, q, w, h, self.wall, self.door_ptr, self.door_to, max_w, max_h)
+        x, y, w, h = _packed(p, q, turned, long_side, short_side, self.bounds, self.wall,
+                             self.door_ptr, self.door_to)
         return ({room_id: (float(x[i]), float(y[i]), float(w[i]), float(h[i]))
                  for i, room_id in enumerate(self.ids)}, float(violation))
 
@@ -240,10 +239,9 @@ class AnnealingRuns:
     `submit(geometry)` asks for a run from that geometry; runs asked for go first. A worker
     with nothing asked for runs one from a random sequence pair, but at most one worker at a
     time does. Each run is one chain, seeded with the next draw from `seed` (the runs asked
-for and the random ones from two streams, so a run's seed does not depend on when a
-worker fell idle). `pop_done`
-    gives finished runs in the order they finished. Runs still going at `deadline` or at
-    `close()` are cut off and give nothing.
+    for and the random ones from two streams, so a run's seed does not depend on when a
+    worker fell idle). `pop_done` gives finished runs in the order they finished. Runs still
+    going at `deadline` or at `close()` are cut off and give nothing.
     """
 
     def __init__(self, spec: Spec, seed: int, deadline: float | None, workers: int = CHAINS):
@@ -255,7 +253,6 @@ worker fell idle). `pop_done`
         self.condition = threading.Condition()
         self.asked: list[tuple[int, dict[str, Rect]]] = []
         self.done: list[tuple[dict[str, Rect], float, bool]] = []
-        self.busy = 0
         self.random_busy = False
         self.threads = [threading.Thread(target=self._work, name="layoutdsl-anneal", daemon=True)
                         for _ in range(workers)]
@@ -285,13 +282,11 @@ worker fell idle). `pop_done`
                 job = self._next_job()
                 if job is None:
                     return
-                self.busy += 1
             kernel_seed, start = job
             result = self.arrays.chain(kernel_seed, self.cancel, start)
             # a chain cut off returns its best state so far, which depends on the clock
             finished = None if self.cancel[0] else self.arrays.geometry(result)
             with self.condition:
-                self.busy -= 1
                 if start is None:
                     self.random_busy = False
                 if finished is not None:
@@ -537,12 +532,18 @@ def _violation(p, q, w, h, x, y, edge_a, edge_b, need, on_boundary, width, heigh
 
 
 @njit(cache=True)
+def _packed(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to):
+    """(x, y, w, h) of a state: its rooms' sides, packed (_pack) within their growth limits."""
+    w, h = _sizes(long_side, short_side, turned)
+    max_w, max_h = _growth_limits(long_side, short_side, turned, bounds)
+    return _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h)
+
+
+@njit(cache=True)
 def _evaluate(p, q, turned, long_side, short_side, bounds, edge_a, edge_b, need, door_ptr, door_to,
               on_boundary, width, height, wall, per_edge):
     """(violation, bounding box area) of a state; per_edge as in _violation."""
-    w, h = _sizes(long_side, short_side, turned)
-    max_w, max_h = _growth_limits(long_side, short_side, turned, bounds)
-    x, y, w, h = _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h)
+    x, y, w, h = _packed(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to)
     return _violation(p, q, w, h, x, y, edge_a, edge_b, need, on_boundary, width, height,
                       wall, per_edge)
 

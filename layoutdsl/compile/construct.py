@@ -1096,7 +1096,8 @@ def _in_turn(candidates: list, annealing: _Annealing | None):
 
     Which geometry comes next thus depends on how fast the annealing runs, as the repairs'
     outcomes depend on their time limits. A spec without cycles never starts a run, and a
-    spec whose first geometry constructs within ANNEAL_DELAY never looks at one.
+    "beside" spec (_anneal_order) whose first geometry constructs within ANNEAL_DELAY never
+    looks at one.
     """
     tried = 0
     next_candidate = 0
@@ -1385,8 +1386,9 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints:
 
 
 ANNEAL_BLOCK_ROOMS = 12
-"""Rooms in the largest cycle block from which annealed geometries come first (as they do
-for a block with a ladder of corridors, layoutdsl.compile.ladders).
+"""Rooms in the largest cycle block from which the annealing starts at once, on two workers
+(as it does for a block with a ladder of corridors, layoutdsl.compile.ladders): "first" in
+_anneal_order.
 
 The greedy placement and its cycle-block templates construct every real plan whose blocks
 have at most 11 rooms and no ladder, most within a second or two (school_wilbraham, a 10-room
