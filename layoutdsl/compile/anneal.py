@@ -240,7 +240,7 @@ class AnnealingRuns:
     with nothing asked for runs one from a random sequence pair, but at most one worker at a
     time does. Each run is one chain, seeded with the next draw from `seed` (the runs asked
     for and the random ones from two streams, so a run's seed does not depend on when a
-    worker fell idle). `pop_done` gives finished runs in the order they finished. Runs still
+    worker fell idle). `pop_done` gives the finished run nearest a layout. Runs still
     going at `deadline` or at `close()` are cut off and give nothing.
     """
 
@@ -294,14 +294,20 @@ class AnnealingRuns:
                 self.condition.notify_all()
 
     def pop_done(self, fit=lambda violation: True) -> tuple[dict[str, Rect], float, bool] | None:
-        """The first finished run whose violation is `fit`, dropping the unfit ones before
-        it: (geometry, violation, whether it started from a given geometry), or None."""
+        """The finished run with the least violation among those that are `fit` (the first
+        finished on a tie), dropping the unfit ones: (geometry, violation, whether it
+        started from a given geometry), or None.
+
+        The least, not the first: runs finish while a repair holds the construction, and
+        measured on school_stjoseph_scatholichighschool's 27-room block, packings that met
+        every door waited 18 s behind earlier ones 2-5 m from a layout whose repairs stalled.
+        """
         with self.condition:
-            while self.done:
-                run = self.done.pop(0)
-                if fit(run[1]):
-                    return run
-        return None
+            self.done = [run for run in self.done if fit(run[1])]
+            if not self.done:
+                return None
+            best = min(range(len(self.done)), key=lambda k: self.done[k][1])
+            return self.done.pop(best)
 
     def has_done(self, fit=lambda violation: True) -> bool:
         """Whether a finished run's violation is `fit`."""

@@ -1078,13 +1078,27 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
         rects = _repair(candidate_problem, geometry, time.monotonic() + share, seed,
                         max_stalls=MAX_STALLS if kind in ("hints", "annealed") else GRAPH_MAX_STALLS,
                         free_defects=kind == "generated", local=kind == "hints",
-                        give_way=annealing.promising if annealing and kind in ("generated", "graph") else None)
+                        give_way=_give_way(annealing, kind))
         if rects is not None:
             return rects
         if annealing is not None and kind in ("generated", "graph"):
             # annealing untangles what the repair could not (office_OfficePlan: see
             # layoutdsl.compile.anneal.FROM_GEOMETRY_TEMPERATURE)
             annealing.anneal_from(made)
+    return None
+
+
+def _give_way(annealing: _Annealing | None, kind: str) -> Callable[[], bool] | None:
+    """When the repair of a `kind` geometry gives up for an annealed one that is done: a
+    greedy one for any close enough to a layout, an annealed one for one far nearer (the
+    hints never)."""
+    if annealing is None:
+        return None
+    if kind in ("generated", "graph"):
+        return annealing.promising
+    if kind == "annealed":
+        violation = annealing.taken_violation
+        return lambda: annealing.far_better(violation)
     return None
 
 
@@ -1459,6 +1473,8 @@ class _Annealing:
         self.spec, self.seed, self.deadline, self.order = spec, seed, deadline, order
         self.runs = None
         self.closed = False
+        self.taken_violation = math.inf
+        """The violation of the annealed geometry taken last."""
         self.lock = threading.Lock()
         self.timer = threading.Timer(0.0 if order == "first" else ANNEAL_DELAY, self.start)
         self.timer.daemon = True
@@ -1481,8 +1497,14 @@ class _Annealing:
         """Whether a finished run is close enough to a layout to repair."""
         return self.runs is not None and self.runs.has_done(_repairable)
 
+    def far_better(self, violation: float) -> bool:
+        """Whether a finished run is much nearer a layout than an annealed geometry
+        `violation` metres from one (whose repair then gives way to it)."""
+        return self.runs is not None and self.runs.has_done(
+            lambda other: _repairable(other) and other < FAR_BETTER * violation)
+
     def take(self) -> dict[str, Rect] | None:
-        """The first finished run close enough to a layout to repair, or None."""
+        """The finished run nearest a layout, if close enough to repair, or None."""
         return self._chosen(self.runs.pop_done(_repairable) if self.runs is not None else None)
 
     def wait(self) -> dict[str, Rect] | None:
@@ -1490,12 +1512,12 @@ class _Annealing:
         self.start()
         return self._chosen(self.runs.wait(_repairable, self.deadline))
 
-    @staticmethod
-    def _chosen(run) -> dict[str, Rect] | None:
+    def _chosen(self, run) -> dict[str, Rect] | None:
         if run is None:
             _debug("annealed geometry: none close enough")
             return None
         geometry, violation, from_geometry = run
+        self.taken_violation = violation
         _debug(f"annealed geometry ({'from a greedy one' if from_geometry else 'random start'}): "
                f"{violation:.2f} m from a layout")
         return geometry
@@ -1506,6 +1528,11 @@ class _Annealing:
             self.timer.cancel()
             if self.runs is not None:
                 self.runs.close()
+
+
+FAR_BETTER = 0.5
+"""An annealed geometry's repair gives way to a finished run with less than this share of
+its violation (a packing that meets every door, against one 2 m from it, say)."""
 
 
 def _repairable(violation: float) -> bool:

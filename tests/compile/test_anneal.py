@@ -223,3 +223,36 @@ def test_the_hints_geometries_come_before_any_annealed_one():
     assert kinds == ["hints", "hints", "annealed", "annealed", "annealed"]
     kinds = [kind for kind, _, last in construct._in_turn(candidates, None)]
     assert kinds == ["hints", "hints", "generated", "graph"]
+
+
+def test_the_finished_run_nearest_a_layout_is_taken_first():
+    """Runs finish while a repair holds the construction: the nearest to a layout goes
+    first, whatever the order they finished in, and the unfit are dropped."""
+    runs = AnnealingRuns(_office(), seed=0, deadline=None, workers=0)
+    try:
+        runs.done = [({"A": 1}, 3.0, False), ({"B": 1}, 0.0, True), ({"C": 1}, 7.0, False),
+                     ({"D": 1}, 0.0, False)]
+        fit = lambda violation: violation <= 6.0  # noqa: E731
+        assert [runs.pop_done(fit)[0] for _ in range(3)] == [{"B": 1}, {"D": 1}, {"A": 1}]
+        assert runs.pop_done(fit) is None and runs.done == []
+    finally:
+        runs.close()
+
+
+def test_an_annealed_repair_gives_way_only_to_a_far_nearer_run():
+    from layoutdsl.compile import construct
+
+    annealing = construct._Annealing.__new__(construct._Annealing)
+    annealing.runs = AnnealingRuns(_office(), seed=0, deadline=None, workers=0)
+    try:
+        annealing.runs.done = [({}, 0.9, False)]
+        annealing.taken_violation = 2.0
+        assert construct._give_way(annealing, "annealed")()
+        annealing.taken_violation = 1.2
+        assert not construct._give_way(annealing, "annealed")()
+        assert construct._give_way(annealing, "generated")()  # any repairable run
+        assert construct._give_way(annealing, "hints") is None
+        assert construct._give_way(None, "generated") is None
+    finally:
+        annealing.runs.close()
+
