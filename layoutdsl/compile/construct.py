@@ -994,6 +994,7 @@ def construct_start(
     hanging: Mapping[str, float] | None = None,
     anneal: bool = True,
     spare_cores: bool = True,
+    max_geometries: int | None = None,
 ) -> dict[str, Rect] | None:
     """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
 
@@ -1008,6 +1009,8 @@ def construct_start(
     block solved as a template does without, its greedy tries and ladder drawing being
     quicker for a few rooms. `spare_cores` off (every core already runs a construction, as
     `compile --variants` does): only the plans the greedy placement never constructs anneal.
+    `max_geometries`: give up after repairing this many seed geometries (a variant's
+    quick try, layoutdsl.compile.variants.QUICK_GEOMETRIES), else only at the deadline.
     """
     if spec.boundary is None or not spec.rooms:
         return None
@@ -1033,17 +1036,22 @@ def construct_start(
     annealing = _Annealing(drawn, seed, deadline, order) if order else None
     candidates = _seed_geometries(drawn, rng, randomize, use_hints, templates)
     try:
-        return _first_repaired(spec, problem, candidates, deadline, seed, rng, annealing)
+        return _first_repaired(spec, problem, candidates, deadline, seed, rng, annealing, max_geometries)
     finally:
         if annealing is not None:
             annealing.close()
 
 
 def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, seed: int,
-                    rng: random.Random, annealing: _Annealing | None) -> dict[str, Rect] | None:
+                    rng: random.Random, annealing: _Annealing | None,
+                    max_geometries: int | None = None) -> dict[str, Rect] | None:
     """The first seed geometry the repair turns into a layout, or None: `candidates` in turn,
-    with each annealed geometry tried as soon as its run is done (_in_turn)."""
+    with each annealed geometry tried as soon as its run is done (_in_turn), at most
+    `max_geometries` of them."""
+    repaired = 0
     for index, (kind, make_geometry, last) in enumerate(_in_turn(candidates, annealing)):
+        if max_geometries is not None and repaired >= max_geometries:
+            return None
         left = deadline - time.monotonic()
         if left <= 0.05:
             return None
@@ -1074,6 +1082,7 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
         else:
             share = min(left, max(GRAPH_TRY_SECONDS, 0.15 * left))
         _debug(f"geometry {index} ({kind}): {share:.1f}s")
+        repaired += 1
         # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
         rects = _repair(candidate_problem, geometry, time.monotonic() + share, seed,
                         max_stalls=MAX_STALLS if kind in ("hints", "annealed") else GRAPH_MAX_STALLS,

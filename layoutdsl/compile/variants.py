@@ -12,7 +12,9 @@ Variant k (1..N) is compiled with seed + k - 1. Two sources of variants:
 
 Each variant stops at a short deterministic rule: its first verified layout, polished with
 its relations fixed (SolveOptions.search off), so the same spec and seed give the same
-bytes and a 50-room variant costs seconds, not the compile's full time limit.
+bytes and a 50-room variant costs seconds, not the compile's full time limit. A new
+arrangement's first try is quick (QUICK_GEOMETRIES seed geometries, then the seed is given
+up); a variant that found nothing is redrawn with the next seed and the full construction.
 
 `diversity` is the plain share of room pairs whose relation differs; `compile --variants`
 reports the arrangement difference of layoutdsl.layout.difference (best of the 8
@@ -124,17 +126,29 @@ _SPEC_FOR_WORKERS: Spec | None = None
 """The spec, inherited by forked workers (AST spans hold mapping proxies, which don't pickle)."""
 
 
-def _solve_variant(job: tuple[int, object, tuple[str, float, float] | None, str]):
+def _solve_variant(job: tuple[int, object, tuple[str, float, float] | None, str, bool]):
     """Compile one variant in a worker: its layout and the position it kept (or None)."""
-    variant_seed, options, point, source = job
+    variant_seed, options, point, source, quick = job
     spec = _SPEC_FOR_WORKERS
     assert spec is not None
     # one variant per core: no core is spare for annealing beside the construction
-    return _compile_variant(spec, variant_seed, options, point, source, spare_cores=False)
+    return _compile_variant(spec, variant_seed, options, point, source, spare_cores=False, quick=quick)
+
+
+QUICK_GEOMETRIES = 2
+"""Seed geometries a variant's quick try repairs before its seed is given up for the next
+(see _compile_variant)."""
 
 
 def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str = "graph",
-                     spare_cores: bool = True):
+                     spare_cores: bool = True, quick: bool = False):
+    """(layout, position kept) of one variant, or (None, None).
+
+    `quick`: the construction gives up after QUICK_GEOMETRIES seed geometries instead of at
+    its time limit. Most seeds construct from their first geometry in a second or two, a
+    few only after many (measured on school_wilbraham: 65 % of a minute's variant time went
+    to the 5 slowest of 19 seeds, up to 33 s): another seed is cheaper than those.
+    """
     from layoutdsl.compile import compile_spec
     from layoutdsl.compile.construct import construct_start
     from layoutdsl.compile.pipeline import START_SHARE
@@ -161,7 +175,7 @@ def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str 
         # question for a variant, and one that finds no start is redrawn
         rects = construct_start(variant_spec, seed=variant_seed, randomize=from_hints,
                                 use_hints=from_hints, deadline=time.monotonic() + START_SHARE * limit,
-                                spare_cores=spare_cores)
+                                spare_cores=spare_cores, max_geometries=QUICK_GEOMETRIES if quick else None)
         if rects is None:
             continue
         variant_options = replace(options, time_limit=max(0.5, limit - (time.monotonic() - attempt_began)),
@@ -204,7 +218,9 @@ def compile_variants(
         if room is not None and spec.boundary is not None:
             x, y = variant_point(spec, seed, index)
             point = (room, x, y)
-        jobs.append((seed + index - 1, options, point, source))
+        # new arrangements: each variant's first try is quick, and _redraw gives a variant
+        # that found nothing a full one
+        jobs.append((seed + index - 1, options, point, source, source == "graph"))
 
     workers = max(1, min(workers or default_workers(), n))
     results = _run_jobs(spec, jobs, workers)
@@ -254,7 +270,10 @@ def _redraw(spec: Spec, results: list, seeds: list[int], next_seed: int, options
         if not redo:
             return
         budget -= len(redo)
-        jobs = [(next_seed + k, options, None, "graph") for k in range(len(redo))]
+        # a variant with no layout gets a full construction; one too close to another
+        # keeps its layout if the quick try finds nothing further away
+        jobs = [(next_seed + k, options, None, "graph", results[index][0] is not None)
+                for k, index in enumerate(redo)]
         next_seed += len(redo)
         for index, job, result in zip(redo, jobs, _run_jobs(spec, jobs, min(workers, len(jobs)))):
             # a redraw that finds nothing keeps the earlier layout, close as it may be
@@ -274,7 +293,8 @@ def _run_jobs(spec: Spec, jobs: list, workers: int) -> list:
                 return list(pool.map(_solve_variant, jobs))
         finally:
             _SPEC_FOR_WORKERS = None
-    return [_compile_variant(spec, *job) for job in jobs]
+    return [_compile_variant(spec, seed, options, point, source, quick=quick)
+            for seed, options, point, source, quick in jobs]
 
 
 def _write(

@@ -256,3 +256,19 @@ def test_an_annealed_repair_gives_way_only_to_a_far_nearer_run():
     finally:
         annealing.runs.close()
 
+
+def test_a_quick_try_gives_up_after_its_seed_geometries(monkeypatch):
+    from layoutdsl.compile import construct
+
+    spec = _office()
+    repairs = []
+    monkeypatch.setattr(construct, "_repair", lambda *args, **kwargs: repairs.append(args[1]))
+    geometry, _ = anneal_geometry(spec, seed=0)
+    candidates = [("generated", lambda: geometry)] * 5
+    problem = construct._Problem.of(spec)
+    rects = construct._first_repaired(spec, problem, candidates, time.monotonic() + 30, 0,
+                                      random.Random(0), None, max_geometries=2)
+    assert rects is None and len(repairs) == 2
+    repairs.clear()
+    construct._first_repaired(spec, problem, candidates, time.monotonic() + 30, 0, random.Random(0), None)
+    assert len(repairs) == 5

@@ -279,10 +279,11 @@ def test_a_variant_close_to_an_earlier_one_is_redrawn_with_the_next_seed(monkeyp
     centres = [layout_centres(layout) for layout in (first, far, farther)]
     assert min(difference(a, b) for a, b in ((centres[0], centres[1]), (centres[0], centres[2]),
                                              (centres[1], centres[2]))) >= 0.3
-    calls = []
+    calls, quick = [], []
 
     def fake_run(spec_, jobs, workers):
         calls.append([job[0] for job in jobs])
+        quick.append([job[4] for job in jobs])
         return [(far, None), (farther, None)][:len(jobs)] if len(calls) == 1 else [(farther, None)] * len(jobs)
 
     monkeypatch.setattr(variants, "_run_jobs", fake_run)
@@ -291,6 +292,8 @@ def test_a_variant_close_to_an_earlier_one_is_redrawn_with_the_next_seed(monkeyp
     seeds = [10, 11, 12]
     variants._redraw(spec, results, seeds, 13, None, workers=1)
     assert calls == [[13, 14]]  # one round, the next unused seeds, in variant order
+    # the copy keeps its layout if a quick try finds nothing; the one without gets a full try
+    assert quick == [[True, False]]
     assert seeds == [10, 13, 14]
     assert [layout for layout, _ in results] == [first, far, farther]
 
