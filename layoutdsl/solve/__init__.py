@@ -405,12 +405,38 @@ def polish(model: pyo.ConcreteModel, options: SolveOptions, *, gap: float = 1e-4
         if var.value is None:
             raise ValueError(f"polish needs a value on every binary; {var.name} has none")
         var.fix(round(var.value))
+    idle = _idle_separations(model)
+    for constraint in idle:
+        constraint.deactivate()
     try:
         return solve(model, replace(options, gap=gap, emphasis="default", node_limit=None, solution_limit=None),
                      warm_start=True)
     finally:
         for var in binaries:
             var.unfix()
+        for constraint in idle:
+            constraint.activate()
+
+
+def _idle_separations(model: pyo.ConcreteModel) -> list:
+    """The (5.8) constraints that cannot bind once every binary is fixed: each side whose ω
+    is 0 (its big-M holds it for every value the variables' bounds allow) and each pair's
+    "one side at least", met by the fixed values. Left out of the translation, they cost
+    nothing: they are 3 in 4 of a model's constraints, and translating them took a third of
+    a 52-room polish (measured on school_wilbraham: 0.9 of 1.6 s translating, 9712
+    constraints)."""
+    block = getattr(model, "eq5_8_non_overlap", None)
+    if block is None:
+        return []
+    idle = []
+    for a, b in block.pairs:
+        sides = [(s, block.side[a, b, s]) for s in model.sides]
+        if not all(var.fixed for _, var in sides):
+            continue
+        idle += [block.separate[a, b, s] for s, var in sides if round(var.value) == 0]
+        if sum(round(var.value) for _, var in sides) >= 1:
+            idle.append(block.one_side[a, b])
+    return [constraint for constraint in idle if constraint.active]
 
 
 @dataclass(slots=True)

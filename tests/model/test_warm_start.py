@@ -34,3 +34,41 @@ def test_the_polish_then_grows_both_rooms_to_their_targets():
         _x, _y, w, h = rects[r]
         assert (max(w, h), min(w, h)) == (pytest.approx(6, abs=1e-3), pytest.approx(3, abs=1e-3)), rects[r]
     assert verify(PAIR, layout_from_rects(PAIR, rects)) == []
+
+
+
+def test_the_polish_leaves_out_only_separations_that_cannot_bind(monkeypatch):
+    """The polish translates only the side each pair's fixed ω chose: it finds the optimum
+    the whole model has for those relations, and the model is whole again afterwards."""
+    import pyomo.environ as pyo
+
+    from layoutdsl import solve as solve_module
+    from planted import planted
+
+    spec_, planted_rects = planted(3, 2)
+    # the rooms shrunk in place: the polish has to grow them back against their neighbours
+    rects = {r: (x, y, 0.9 * w, 0.9 * h) for r, (x, y, w, h) in planted_rects.items()}
+    whole = solve_module._idle_separations
+    left_out = []
+
+    def recorded(model):
+        idle = whole(model)
+        left_out.append(len(idle))
+        return idle
+
+    objectives = []
+    for skipping in (recorded, lambda model: []):
+        monkeypatch.setattr(solve_module, "_idle_separations", skipping)
+        model = build_model(spec_)
+        warm_start_from_rects(model, spec_, rects)
+        free = [v for v in model.component_data_objects(pyo.Var) if v.is_binary() and not v.fixed]
+        outcome = polish(model, SolveOptions(time_limit=20, quiet=True))
+        assert outcome.has_solution
+        objectives.append(outcome.objective)
+        assert all(c.active for c in model.component_data_objects(pyo.Constraint))
+        assert not any(v.fixed for v in free)
+        assert verify(spec_, layout_from_rects(spec_, rects_from_model(model))) == []
+    pairs = len(model.eq5_8_non_overlap.pairs)
+    # three sides and the "one side" constraint of every pair with its four ω fixed
+    assert pairs > 0 and left_out[0] >= pairs
+    assert objectives[0] == pytest.approx(objectives[1], rel=1e-6, abs=1e-6)
