@@ -14,7 +14,7 @@ Each variant stops at a short deterministic rule: its first verified layout, pol
 its relations fixed (SolveOptions.search off), so the same spec and seed give the same
 bytes and a 50-room variant costs seconds, not the compile's full time limit. A new
 arrangement's first try is quick (QUICK_GEOMETRIES seed geometries, then the seed is given
-up); a variant that found nothing is redrawn with the next seed and the full construction.
+up); a variant that found nothing gets the full construction of its seed, then new seeds.
 
 `diversity` is the plain share of room pairs whose relation differs; `compile --variants`
 reports the arrangement difference of layoutdsl.layout.difference (best of the 8
@@ -219,14 +219,14 @@ def compile_variants(
             x, y = variant_point(spec, seed, index)
             point = (room, x, y)
         # new arrangements: each variant's first try is quick, and _redraw gives a variant
-        # that found nothing a full one
+        # that found nothing the full construction
         jobs.append((seed + index - 1, options, point, source, source == "graph"))
 
     workers = max(1, min(workers or default_workers(), n))
     results = _run_jobs(spec, jobs, workers)
     seeds = [job[0] for job in jobs]
     if source == "graph":
-        _redraw(spec, results, seeds, seed + n, options, workers)
+        _redraw(spec, results, seeds, seed + n, options, workers, quick=[job[4] for job in jobs])
     layouts = [layout for layout, _ in results]
     positions = [point for _, point in results]
     found = [layout for layout in layouts if layout is not None]
@@ -245,9 +245,15 @@ REDRAWS_PER_VARIANT = 2
 
 
 def _redraw(spec: Spec, results: list, seeds: list[int], next_seed: int, options,
-            workers: int) -> None:
+            workers: int, quick: list[bool] | None = None) -> None:
     """Redraw, in place, each variant that found no layout or lies within MIN_PAIRWISE of
     an earlier one, with the next unused seeds, until none does or the redraws run out.
+
+    `quick`: whether each variant's last try was quick (_compile_variant). A quick try that
+    found nothing is followed by the full construction of the same seed, so the seed a
+    variant records gives its layout again (`--variants 1 --seed S`: the quick try, then
+    the full one); a variant too close to another gets a quick try with a new seed, and
+    keeps its layout if that finds nothing.
 
     Two seeds can grow nearly the same building (measured on school_wilbraham: 3 of 15
     pairs of a minute's variants below 0.3); a user asking for N variants wants N different
@@ -256,6 +262,7 @@ def _redraw(spec: Spec, results: list, seeds: list[int], next_seed: int, options
     """
     from layoutdsl.layout.difference import difference, layout_centres
 
+    quick = list(quick) if quick is not None else [False] * len(results)
     budget = REDRAWS_PER_VARIANT * len(results)
     while budget > 0:
         kept: list[dict] = []
@@ -270,12 +277,15 @@ def _redraw(spec: Spec, results: list, seeds: list[int], next_seed: int, options
         if not redo:
             return
         budget -= len(redo)
-        # a variant with no layout gets a full construction; one too close to another
-        # keeps its layout if the quick try finds nothing further away
-        jobs = [(next_seed + k, options, None, "graph", results[index][0] is not None)
-                for k, index in enumerate(redo)]
-        next_seed += len(redo)
+        jobs = []
+        for index in redo:
+            if results[index][0] is None and quick[index]:
+                jobs.append((seeds[index], options, None, "graph", False))
+            else:
+                jobs.append((next_seed, options, None, "graph", results[index][0] is not None))
+                next_seed += 1
         for index, job, result in zip(redo, jobs, _run_jobs(spec, jobs, min(workers, len(jobs)))):
+            quick[index] = job[4]
             # a redraw that finds nothing keeps the earlier layout, close as it may be
             if result[0] is not None or results[index][0] is None:
                 results[index] = result

@@ -296,6 +296,14 @@ def test_a_variant_close_to_an_earlier_one_is_redrawn_with_the_next_seed(monkeyp
     assert quick == [[True, False]]
     assert seeds == [10, 13, 14]
     assert [layout for layout, _ in results] == [first, far, farther]
+    # after quick tries, the variant that found nothing gets the full construction of its
+    # own seed (its recorded seed gives its layout again); the copy a new seed's quick try
+    calls.clear(), quick.clear()
+    results = [(first, None), (grid(range(6)), None), (None, None)]
+    seeds = [10, 11, 12]
+    variants._redraw(spec, results, seeds, 13, None, workers=1, quick=[True, True, True])
+    assert calls == [[13, 12]] and quick == [[True, False]]
+    assert seeds == [10, 13, 12]
 
 
 def test_blocks_sharing_a_room_are_joined_and_solved_together():
