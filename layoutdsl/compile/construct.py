@@ -1106,8 +1106,8 @@ def _give_way(annealing: _Annealing | None, kind: str) -> Callable[[], bool] | N
     if kind in ("generated", "graph"):
         return annealing.promising
     if kind == "annealed":
-        violation = annealing.taken_violation
-        return lambda: annealing.far_better(violation)
+        nearer_than = FAR_BETTER * annealing.taken_violation
+        return lambda: annealing.promising(nearer_than)
     return None
 
 
@@ -1502,15 +1502,11 @@ class _Annealing:
         self.start()
         self.runs.submit(geometry)
 
-    def promising(self) -> bool:
-        """Whether a finished run is close enough to a layout to repair."""
-        return self.runs is not None and self.runs.has_done(_repairable)
-
-    def far_better(self, violation: float) -> bool:
-        """Whether a finished run is much nearer a layout than an annealed geometry
-        `violation` metres from one (whose repair then gives way to it)."""
+    def promising(self, nearer_than: float = math.inf) -> bool:
+        """Whether a finished run is close enough to a layout to repair (and less than
+        `nearer_than` metres from one)."""
         return self.runs is not None and self.runs.has_done(
-            lambda other: _repairable(other) and other < FAR_BETTER * violation)
+            lambda violation: _repairable(violation) and violation < nearer_than)
 
     def take(self) -> dict[str, Rect] | None:
         """The finished run nearest a layout, if close enough to repair, or None."""
