@@ -42,7 +42,8 @@ from collections.abc import Callable, Mapping
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects, separations
 from layoutdsl.compile import lshape
-from layoutdsl.compile.generate import RoomSizes, cycle_blocks, drawn_sides, generate_geometry, room_graph
+from layoutdsl.compile.generate import (TOP_CHOICES, RoomSizes, cycle_blocks, drawn_sides, generate_geometry,
+                                        room_graph)
 from layoutdsl.compile.ladders import find_ladder, ladder_template
 from layoutdsl.syntax.ast import Room, Spec
 
@@ -995,6 +996,8 @@ def construct_start(
     anneal: bool = True,
     spare_cores: bool = True,
     max_geometries: int | None = None,
+    try_seconds: float | None = None,
+    choices: int | None = None,
 ) -> dict[str, Rect] | None:
     """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
 
@@ -1010,7 +1013,9 @@ def construct_start(
     quicker for a few rooms. `spare_cores` off (every core already runs a construction, as
     `compile --variants` does): only the plans the greedy placement never constructs anneal.
     `max_geometries`: give up after repairing this many seed geometries (a variant's
-    quick try, layoutdsl.compile.variants.QUICK_GEOMETRIES), else only at the deadline.
+    quick try, layoutdsl.compile.variants.QUICK_GEOMETRIES), else only at the deadline;
+    `try_seconds`: the most any one geometry's repair may take (else a share of the time left).
+    `choices`: the greedy placement's choices per room (layoutdsl.compile.generate.TOP_CHOICES).
     """
     if spec.boundary is None or not spec.rooms:
         return None
@@ -1034,9 +1039,10 @@ def construct_start(
         # variants a minute annealing beside the repairs, 14 without
         order = None
     annealing = _Annealing(drawn, seed, deadline, order) if order else None
-    candidates = _seed_geometries(drawn, rng, randomize, use_hints, templates)
+    candidates = _seed_geometries(drawn, rng, randomize, use_hints, templates, choices or TOP_CHOICES)
     try:
-        return _first_repaired(spec, problem, candidates, deadline, seed, rng, annealing, max_geometries)
+        return _first_repaired(spec, problem, candidates, deadline, seed, rng, annealing, max_geometries,
+                               try_seconds)
     finally:
         if annealing is not None:
             annealing.close()
@@ -1044,10 +1050,11 @@ def construct_start(
 
 def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, seed: int,
                     rng: random.Random, annealing: _Annealing | None,
-                    max_geometries: int | None = None) -> dict[str, Rect] | None:
+                    max_geometries: int | None = None,
+                    try_seconds: float | None = None) -> dict[str, Rect] | None:
     """The first seed geometry the repair turns into a layout, or None: `candidates` in turn,
     with each annealed geometry tried as soon as its run is done (_in_turn), at most
-    `max_geometries` of them."""
+    `max_geometries` of them, each repaired for at most `try_seconds`."""
     repaired = 0
     for index, (kind, make_geometry, last) in enumerate(_in_turn(candidates, annealing)):
         if max_geometries is not None and repaired >= max_geometries:
@@ -1081,6 +1088,8 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
             share = min(left, max(GENERATED_TRY_SECONDS, GENERATED_TRY_SHARE * left))
         else:
             share = min(left, max(GRAPH_TRY_SECONDS, 0.15 * left))
+        if try_seconds is not None:
+            share = min(share, try_seconds)
         _debug(f"geometry {index} ({kind}): {share:.1f}s")
         repaired += 1
         # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
@@ -1377,7 +1386,7 @@ TEMPLATE_RESOLVE_FACTOR = 2.0
 
 
 def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints: bool = True,
-                     templates: _TemplateSets | None = None):
+                     templates: _TemplateSets | None = None, choices: int = TOP_CHOICES):
     """(kind, maker) of each seed geometry to try, best first; each is built when needed.
     Annealed geometries (_Annealing) join them as they come (_in_turn)."""
     has_hints = use_hints and hint_geometry(spec) is not None
@@ -1401,7 +1410,7 @@ def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints:
     graph_tries = 0
     for index in range(GENERATED_TRIES):
         makers.append(("generated", lambda index=index: generate_geometry(
-            spec, rng, templates=templates.get(index) if templates else ())))
+            spec, rng, templates=templates.get(index) if templates else (), choices=choices)))
         if index % every == every - 1 and graph_tries < GRAPH_TRIES:
             graph_tries += 1
             makers.append(("graph", lambda: construct_geometry(spec, rng)))

@@ -338,18 +338,20 @@ DRAWS = 3
 
 
 def generate_geometry(spec: Spec, rng: random.Random, *, shrink: float | None = None,
-                      draws: int = DRAWS, templates: Sequence[Mapping[str, Rect]] = ()) -> dict[str, Rect]:
+                      draws: int = DRAWS, templates: Sequence[Mapping[str, Rect]] = (),
+                      choices: int = TOP_CHOICES) -> dict[str, Rect]:
     """A seed geometry for the construction's repair, grown from the room graph alone.
 
     Every adjacency of the spec is, where the greedy choice could manage it, a touching
     contact with one wall thickness between the rooms; overlaps are few. `draws` placements
     are drawn from `rng` and the one with the least overlap and missing contact is kept
     (measured: the repair's time grows with those defects). Different draws of `rng` give
-    different arrangements.
+    different arrangements; more `choices` (each room's place drawn among more of its best
+    candidates) give arrangements that differ more from one seed to the next.
     """
     best: tuple[float, dict[str, Rect]] | None = None
     for _ in range(max(1, draws)):
-        geometry, defect = _draw_geometry(spec, rng, shrink, templates)
+        geometry, defect = _draw_geometry(spec, rng, shrink, templates, choices)
         if best is None or defect < best[0]:
             best = (defect, geometry)
     assert best is not None
@@ -357,7 +359,8 @@ def generate_geometry(spec: Spec, rng: random.Random, *, shrink: float | None = 
 
 
 def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
-                   templates: Sequence[Mapping[str, Rect]] = ()) -> tuple[dict[str, Rect], float]:
+                   templates: Sequence[Mapping[str, Rect]] = (),
+                   choices: int = TOP_CHOICES) -> tuple[dict[str, Rect], float]:
     """One greedy placement plus rip-up-and-replace: (geometry, its total defect)."""
     boundary = spec.boundary
     assert boundary is not None
@@ -400,7 +403,8 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
                    and id(t) not in dropped]
         if pending:
             # a cycle block: all its rooms at once, as they were solved together
-            placed = _place_template(pending[0], room_id, placement, geometry, neighbours, walls, rng)
+            placed = _place_template(pending[0], room_id, placement, geometry, neighbours, walls, rng,
+                                     choices)
             if placed is None:
                 # it shares a placed room solved in another shape: its rooms go one by one
                 dropped.add(id(pending[0]))
@@ -416,7 +420,7 @@ def _draw_geometry(spec: Spec, rng: random.Random, shrink: float | None,
         corridor_anchors = {n for n in neighbours[room_id] if corridor[room_id] and corridor[n]}
         put(room_id, _best_place(room_id, placement, sides[room_id], neighbours[room_id],
                                  walls, geometry, on_boundary[room_id], rng, own_depth,
-                                 foreign, partners, corridor_anchors))
+                                 foreign, partners, corridor_anchors, choices))
     fixed = set(_fixed_points(spec))
     shift_fixed = set(fixed)
     # the rooms of a placed block keep the places they were solved in: moving one alone
@@ -543,7 +547,8 @@ SYMMETRIES = [(flip_x, flip_y, turn) for turn in (False, True) for flip_x in (Fa
 
 def _place_template(template: Mapping[str, Rect], room_id: str, placement: _Placement,
                     geometry: dict[str, Rect], neighbours: dict[str, list[str]],
-                    walls: dict[frozenset[str], float], rng: random.Random) -> dict[str, Rect] | None:
+                    walls: dict[frozenset[str], float], rng: random.Random,
+                    choices: int = TOP_CHOICES) -> dict[str, Rect] | None:
     """Where a solved cycle block goes, as a rigid whole: its rooms not yet placed (None
     when it shares a placed room that has another shape there).
 
@@ -606,7 +611,7 @@ def _place_template(template: Mapping[str, Rect], room_id: str, placement: _Plac
     order = np.argsort(score, kind="stable")
     best = score[order[0]]
     scale = max(1.0, abs(best))
-    good = [int(i) for i in order[:TOP_CHOICES] if score[i] <= best + CHOICE_SLACK * scale]
+    good = [int(i) for i in order[:choices] if score[i] <= best + CHOICE_SLACK * scale]
     chosen = rects[good[rng.randrange(len(good))]]
     return {r: tuple(float(v) for v in chosen[k]) for k, r in enumerate(todo)}
 
@@ -781,7 +786,7 @@ def _best_place(room_id: str, placement: _Placement, sides: tuple[float, float],
                 geometry: dict[str, Rect], on_boundary: bool, rng: random.Random,
                 own_depth: float, foreign_halos: np.ndarray,
                 partners: dict[str, float] | None = None,
-                corridor_anchors: set[str] = frozenset()) -> Rect:
+                corridor_anchors: set[str] = frozenset(), choices: int = TOP_CHOICES) -> Rect:
     """Where the room goes: the seeded pick among the best-scored candidate rectangles.
 
     Besides overlaps, a candidate pays (at HALO_WEIGHT) for the band of `own_depth` around
@@ -824,7 +829,7 @@ def _best_place(room_id: str, placement: _Placement, sides: tuple[float, float],
     order = np.argsort(score, kind="stable")
     best = score[order[0]]
     scale = max(1.0, abs(best), (sides[0] + sides[1]) * COMPACT_WEIGHT)
-    good = [int(i) for i in order[:TOP_CHOICES] if score[i] <= best + CHOICE_SLACK * scale]
+    good = [int(i) for i in order[:choices] if score[i] <= best + CHOICE_SLACK * scale]
     x, y, w, h = cands[good[rng.randrange(len(good))]]
     return (float(x), float(y), float(w), float(h))
 
