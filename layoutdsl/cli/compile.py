@@ -60,9 +60,9 @@ def add_parser(subparsers) -> None:
                         help="leave the wheeled robot and its rangefinders out of the MuJoCo scene")
     parser.add_argument("--variants", type=positive_int, metavar="N",
                         help="write N different verified layouts, NAME-1.* ... NAME-N.*: new "
-                        "arrangements generated from the room graph (seed, seed+1, ...), each "
-                        "its first verified layout, polished; one within 0.3 of an earlier "
-                        "variant, or without a layout, is redrawn with a later seed")
+                        "arrangements generated from the room graph, seeds seed, seed+1, ... "
+                        "tried in turn, each stopping at its first verified layout, polished; "
+                        "one within 0.3 of a variant kept is skipped")
     parser.add_argument("--variants-from", choices=("graph", "hints"), default="graph",
                         help="graph (default): variants ignore the spec's hints; hints: "
                         "variants perturb the hints (they stay close to the original plan)")
@@ -285,6 +285,10 @@ def _write_variants_report(spec, seeds: list[int], source: str, layouts, pairwis
     return write_text_atomic(outdir / f"{spec.name}-variants.json", json.dumps(report, indent=2) + "\n")
 
 
+def _progress_line(line: str) -> None:
+    print(line, file=sys.stderr, flush=True)
+
+
 def _run_variants(spec, args, options, outdir: Path, formats) -> int:
     """--variants N: the construction helper's compile_variants writes NAME-1.* ... NAME-N.*."""
     from layoutdsl.compile.variants import compile_variants
@@ -293,7 +297,8 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
         result = compile_variants(spec, args.variants, seed=options.seed, options=options,
                                   outdir=outdir, formats=formats, robot_room=args.robot_room,
                                   workers=args.workers, source=args.variants_from,
-                                  world_options={"wall_height": args.wall_height, "robot": args.robot})
+                                  world_options={"wall_height": args.wall_height, "robot": args.robot},
+                                  progress=None if args.quiet else _progress_line)
     except OSError as error:
         return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
     layouts = list(result.layouts)

@@ -1,20 +1,23 @@
 """Many different verified layouts from one spec (the thesis, §6.2; issue 11).
 
-Variant k (1..N) is compiled with seed + k - 1. Two sources of variants:
+Two sources of variants:
 
 - "graph" (the default): each variant is a NEW arrangement generated from the room graph
   alone (layoutdsl.generate), ignoring the spec's hints, so variants differ from the
-  original plan and from one another;
+  original plan and from one another: seeds seed, seed + 1, ... are tried in turn and a
+  layout is kept when it differs from every one kept before it (_new_arrangements);
 - "hints": as before issue 11, for comparison: the first layout is repaired from the hints
   perturbed by the seed, and (as in the thesis) a chosen room, an entrance if there is
   one, gets a `Position` at another point of the boundary per variant (dropped again if that
-  variant finds no layout with it). These stay close to the original arrangement.
+  variant finds no layout with it). Variant k has seed + k - 1. These stay close to the
+  original arrangement.
 
 Each variant stops at a short deterministic rule: its first verified layout, polished with
 its relations fixed (SolveOptions.search off), so the same spec and seed give the same
 bytes and a 50-room variant costs seconds, not the compile's full time limit. A new
 arrangement's first try is quick (QUICK_GEOMETRIES seed geometries, then the seed is given
-up); a variant that found nothing gets the full construction of its seed, then new seeds.
+up); the seeds whose quick try found nothing get their full construction if the quick tries
+run out before N different arrangements are kept.
 
 `diversity` is the plain share of room pairs whose relation differs; `compile --variants`
 reports the arrangement difference of layoutdsl.layout.difference (best of the 8
@@ -26,6 +29,8 @@ from __future__ import annotations
 import multiprocessing
 import random
 import time
+from collections import deque
+from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 from itertools import combinations
@@ -53,8 +58,8 @@ class VariantsResult:
     """The variants (None where one found no layout), their diversity and the files written."""
 
     layouts: list[Layout | None]
-    seeds: list[int]
-    """The seed each variant was compiled with (a redrawn variant has a later one)."""
+    seeds: list[int | None]
+    """The seed each variant was compiled with (None where a new arrangement found none)."""
     diversity: float | None
     """Mean share of room pairs whose relation differs between two variants found (None
     with fewer than two); the CLI reports the symmetry-aware arrangement difference."""
@@ -140,6 +145,18 @@ QUICK_GEOMETRIES = 2
 (see _compile_variant)."""
 
 
+QUICK_TRY_SECONDS = 2.5
+"""The most the repair of one seed geometry takes in a quick try."""
+
+VARIANT_CHOICES = 6
+"""Choices per room of the greedy placement in a quick try (layoutdsl.compile.generate
+.TOP_CHOICES, 3, elsewhere). Measured on school_wilbraham, `--variants 20` on 2 workers:
+with 3, seeds 0-57 gave 19 and seeds 100-157 only 17 layouts 0.3 apart from one another
+(170 and 164 s); with 6, all 20 from seeds 0-49 and 100-150 (111 and 166 s). The full
+construction keeps 3: its seeds are the hard ones (school_hendersonhighschool, `--variants
+5`: 4 of 5 found in 270 s with 6, 5 in 144 s with 3)."""
+
+
 def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str = "graph",
                      spare_cores: bool = True, quick: bool = False):
     """(layout, position kept) of one variant, or (None, None).
@@ -172,10 +189,12 @@ def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str 
         # constructed first and handed over as the start: compile then skips its presolve
         # probe, which translates the whole model to SCIP once more (measured on
         # school_wilbraham: 1.3 of a variant's 5.1 s); the spec's feasibility is not in
-        # question for a variant, and one that finds no start is redrawn
+        # question for a variant, and one that finds no start gives way to another seed
         rects = construct_start(variant_spec, seed=variant_seed, randomize=from_hints,
                                 use_hints=from_hints, deadline=time.monotonic() + START_SHARE * limit,
-                                spare_cores=spare_cores, max_geometries=QUICK_GEOMETRIES if quick else None)
+                                spare_cores=spare_cores, max_geometries=QUICK_GEOMETRIES if quick else None,
+                                try_seconds=QUICK_TRY_SECONDS if quick else None,
+                                choices=VARIANT_CHOICES if quick else None)
         if rects is None:
             continue
         variant_options = replace(options, time_limit=max(0.5, limit - (time.monotonic() - attempt_began)),
@@ -198,12 +217,14 @@ def compile_variants(
     workers: int | None = None,
     source: str = "graph",
     world_options: dict | None = None,
+    progress: Callable[[str], None] | None = None,
 ) -> VariantsResult:
     """Compile N variants of the spec; write NAME-k.* (and NAME-k.layout.json) to `outdir`.
 
     Each variant gets at most options.time_limit seconds; up to `workers` (default: one per
     usable core) run at once. `source` is one of SOURCES (see the module docstring).
-    `world_options` (wall_height, robot) go to the 3D emitters.
+    `world_options` (wall_height, robot) go to the 3D emitters. `progress` gets a line per
+    new arrangement kept.
     """
     from layoutdsl.solve import SolveOptions
 
@@ -212,21 +233,19 @@ def compile_variants(
     if options is None:
         options = SolveOptions.from_settings(spec.settings)
     room = chosen_room(spec) if source == "hints" else None
-    jobs = []
-    for index in range(1, n + 1):
-        point = None
-        if room is not None and spec.boundary is not None:
-            x, y = variant_point(spec, seed, index)
-            point = (room, x, y)
-        # new arrangements: each variant's first try is quick, and _redraw gives a variant
-        # that found nothing the full construction
-        jobs.append((seed + index - 1, options, point, source, source == "graph"))
-
     workers = max(1, min(workers or default_workers(), n))
-    results = _run_jobs(spec, jobs, workers)
-    seeds = [job[0] for job in jobs]
     if source == "graph":
-        _redraw(spec, results, seeds, seed + n, options, workers, quick=[job[4] for job in jobs])
+        results, seeds = _new_arrangements(spec, n, seed, options, workers, progress)
+    else:
+        jobs = []
+        for index in range(1, n + 1):
+            point = None
+            if room is not None and spec.boundary is not None:
+                x, y = variant_point(spec, seed, index)
+                point = (room, x, y)
+            jobs.append((seed + index - 1, options, point, source, False))
+        results = _run_jobs(spec, jobs, workers)
+        seeds = [job[0] for job in jobs]
     layouts = [layout for layout, _ in results]
     positions = [point for _, point in results]
     found = [layout for layout in layouts if layout is not None]
@@ -238,58 +257,115 @@ def compile_variants(
 
 MIN_PAIRWISE = 0.3
 """Least arrangement difference (layoutdsl.layout.difference) a new-arrangement variant
-must have from every earlier one; closer ones are redrawn with a later seed."""
+must have from every variant kept before it."""
 
-REDRAWS_PER_VARIANT = 2
-"""Redraws allowed, over all variants, per variant asked for."""
+SEEDS_PER_VARIANT = 3
+"""Quick tries (one seed each) new arrangements may take per variant asked for beyond the
+first, before the seeds whose quick try found nothing get their full construction."""
+
+QUICK_FAILURES = 2
+"""...and quick tries that may find nothing per variant asked for: a plan whose quick tries
+mostly fail (school_hendersonhighschool: 3 of 20 seeds constructed in two geometries) goes
+on to full constructions without spending its whole quick budget first."""
 
 
-def _redraw(spec: Spec, results: list, seeds: list[int], next_seed: int, options,
-            workers: int, quick: list[bool] | None = None) -> None:
-    """Redraw, in place, each variant that found no layout or lies within MIN_PAIRWISE of
-    an earlier one, with the next unused seeds, until none does or the redraws run out.
+def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
+                      progress: Callable[[str], None] | None = None) -> tuple[list, list[int | None]]:
+    """(layout, None) of each of N new arrangements, and the seed each came from.
 
-    `quick`: whether each variant's last try was quick (_compile_variant). A quick try that
-    found nothing is followed by the full construction of the same seed, so the seed a
-    variant records gives its layout again (`--variants 1 --seed S`: the quick try, then
-    the full one); a variant too close to another gets a quick try with a new seed, and
-    keeps its layout if that finds nothing.
+    Seeds seed, seed + 1, ... get a quick try each (_compile_variant), `workers` at a time
+    and a few queued, so no core waits for a slow seed; their outcomes are taken in seed
+    order, and one is kept when it lies at least MIN_PAIRWISE from every variant kept
+    before it, until N are kept, 1 + SEEDS_PER_VARIANT * (N - 1) seeds are used or
+    QUICK_FAILURES * N quick tries found nothing. Then the seeds whose quick try found
+    nothing get their full construction, in seed order, until N are kept; then layouts
+    within MIN_PAIRWISE of a kept one fill any still missing (None where even those run
+    out).
 
-    Two seeds can grow nearly the same building (measured on school_wilbraham: 3 of 15
-    pairs of a minute's variants below 0.3); a user asking for N variants wants N different
-    ones. Which variants are redrawn depends only on the layouts, so the outcome stays a
-    function of the spec and seed wherever each variant's own stopping rule is.
+    Taking outcomes in seed order makes the variants a function of the spec and seed
+    wherever each variant's own stopping rule is, however the workers' timing falls; and
+    `--variants 1 --seed S` (a quick try of S, then its full construction) gives the
+    variant of seed S again. Measured on school_wilbraham (2 workers, `--variants 20`): a
+    round of N variants, then rounds of redraws, waited on each round's slowest seed (148 s);
+    seeds taken as workers free up (the throughput benchmark's way) spend no such wait.
     """
     from layoutdsl.layout.difference import difference, layout_centres
 
-    quick = list(quick) if quick is not None else [False] * len(results)
-    budget = REDRAWS_PER_VARIANT * len(results)
-    while budget > 0:
-        kept: list[dict] = []
-        redo = []
-        for index, (layout, _) in enumerate(results):
-            centres = None if layout is None else layout_centres(layout)
-            if centres is None or any(difference(centres, other) < MIN_PAIRWISE for other in kept):
-                redo.append(index)
-            else:
-                kept.append(centres)
-        redo = redo[:budget]
-        if not redo:
+    kept: list[tuple[int, Layout, dict]] = []
+    close: list[tuple[int, Layout]] = []
+    failed: list[int] = []
+
+    def take(variant_seed: int, layout: Layout | None, how: str) -> None:
+        if layout is None:
+            failed.append(variant_seed)
             return
-        budget -= len(redo)
-        jobs = []
-        for index in redo:
-            if results[index][0] is None and quick[index]:
-                jobs.append((seeds[index], options, None, "graph", False))
-            else:
-                jobs.append((next_seed, options, None, "graph", results[index][0] is not None))
-                next_seed += 1
-        for index, job, result in zip(redo, jobs, _run_jobs(spec, jobs, min(workers, len(jobs)))):
-            quick[index] = job[4]
-            # a redraw that finds nothing keeps the earlier layout, close as it may be
-            if result[0] is not None or results[index][0] is None:
-                results[index] = result
-                seeds[index] = job[0]
+        centres = layout_centres(layout)
+        if all(difference(centres, other) >= MIN_PAIRWISE for _, _, other in kept):
+            kept.append((variant_seed, layout, centres))
+            if progress is not None:
+                progress(f"variant {len(kept)} of {n}: seed {variant_seed} ({how})")
+        else:
+            close.append((variant_seed, layout))
+
+    def enough() -> bool:
+        return len(kept) >= n
+
+    def quick_done() -> bool:
+        return enough() or len(failed) >= QUICK_FAILURES * n
+
+    quick = [(s, options, None, "graph", True) for s in range(seed, seed + 1 + SEEDS_PER_VARIANT * (n - 1))]
+    for job, (layout, _) in _in_seed_order(spec, quick, workers, quick_done):
+        take(job[0], layout, "quick try")
+    if not enough() and failed:
+        full = [(s, options, None, "graph", False) for s in failed]
+        failed.clear()
+        for job, (layout, _) in _in_seed_order(spec, full, workers, enough):
+            take(job[0], layout, "full construction")
+    chosen = [(s, layout) for s, layout, _ in kept] + close[:n - len(kept)]
+    chosen += [(None, None)] * (n - len(chosen))
+    return [(layout, None) for _, layout in chosen], [s for s, _ in chosen]
+
+
+LOOKAHEAD = 2
+"""Jobs queued per worker beyond those running, so a worker that finishes never waits
+while the outcomes are taken in order."""
+
+
+def _in_seed_order(spec: Spec, jobs: list, workers: int, enough: Callable[[], bool]):
+    """(job, (layout, position kept)) of each job, in job order, until `enough()`: on
+    `workers` forked processes (the jobs still running then are stopped), or in this one."""
+    if workers <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        for job in jobs:
+            if enough():
+                return
+            variant_seed, options, point, source, quick = job
+            yield job, _compile_variant(spec, variant_seed, options, point, source, quick=quick)
+        return
+    global _SPEC_FOR_WORKERS
+    _SPEC_FOR_WORKERS = spec
+    pool = multiprocessing.get_context("fork").Pool(workers)
+    try:
+        waiting = iter(jobs)
+        queued: deque = deque()
+
+        def top_up() -> None:
+            while len(queued) < workers * LOOKAHEAD:
+                job = next(waiting, None)
+                if job is None:
+                    return
+                queued.append((job, pool.apply_async(_solve_variant, (job,))))
+
+        top_up()
+        while queued and not enough():
+            job, outcome = queued.popleft()
+            result = outcome.get()
+            top_up()
+            yield job, result
+    finally:
+        # what is still running or queued is not needed: stopped, not waited for
+        pool.terminate()
+        pool.join()
+        _SPEC_FOR_WORKERS = None
 
 
 def _run_jobs(spec: Spec, jobs: list, workers: int) -> list:

@@ -264,7 +264,7 @@ def test_blocks_sharing_a_room_give_it_one_shape_and_are_laid_over_it():
     assert _place_template(second, "S", placement, geometry, _neighbours(spec), walls, random.Random(0)) is None
 
 
-def test_a_variant_close_to_an_earlier_one_is_redrawn_with_the_next_seed(monkeypatch):
+def test_new_arrangements_are_taken_in_seed_order_and_close_ones_skipped(monkeypatch):
     from layoutdsl.compile import variants
     from layoutdsl.layout import Layout
 
@@ -279,31 +279,49 @@ def test_a_variant_close_to_an_earlier_one_is_redrawn_with_the_next_seed(monkeyp
     centres = [layout_centres(layout) for layout in (first, far, farther)]
     assert min(difference(a, b) for a, b in ((centres[0], centres[1]), (centres[0], centres[2]),
                                              (centres[1], centres[2]))) >= 0.3
-    calls, quick = [], []
+    tries = []
 
-    def fake_run(spec_, jobs, workers):
-        calls.append([job[0] for job in jobs])
-        quick.append([job[4] for job in jobs])
-        return [(far, None), (farther, None)][:len(jobs)] if len(calls) == 1 else [(farther, None)] * len(jobs)
+    def run(outcomes: dict, n: int):
+        """compile_variants' new arrangements, each seed's (quick, full) outcome given."""
+        tries.clear()
 
-    monkeypatch.setattr(variants, "_run_jobs", fake_run)
-    # variant 2 is the first redrawn (a copy of variant 1), variant 3 found nothing
-    results = [(first, None), (grid(range(6)), None), (None, None)]
-    seeds = [10, 11, 12]
-    variants._redraw(spec, results, seeds, 13, None, workers=1)
-    assert calls == [[13, 14]]  # one round, the next unused seeds, in variant order
-    # the copy keeps its layout if a quick try finds nothing; the one without gets a full try
-    assert quick == [[True, False]]
-    assert seeds == [10, 13, 14]
-    assert [layout for layout, _ in results] == [first, far, farther]
-    # after quick tries, the variant that found nothing gets the full construction of its
-    # own seed (its recorded seed gives its layout again); the copy a new seed's quick try
-    calls.clear(), quick.clear()
-    results = [(first, None), (grid(range(6)), None), (None, None)]
-    seeds = [10, 11, 12]
-    variants._redraw(spec, results, seeds, 13, None, workers=1, quick=[True, True, True])
-    assert calls == [[13, 12]] and quick == [[True, False]]
-    assert seeds == [10, 13, 12]
+        def fake(spec_, seed, options, point, source, quick=False, **_):
+            tries.append((seed, quick))
+            return outcomes.get(seed, (None, None))[0 if quick else 1], None
+
+        monkeypatch.setattr(variants, "_compile_variant", fake)
+        results, seeds = variants._new_arrangements(spec, n, 10, None, workers=1)
+        return [layout for layout, _ in results], seeds
+
+    # 11 is a copy of 10 and 12 finds nothing quickly: skipped, and 13 is kept; the seeds
+    # after the N-th kept one are never tried
+    layouts, seeds = run({10: (first, first), 11: (grid(range(6)), None), 13: (far, far),
+                          14: (farther, farther)}, 2)
+    assert seeds == [10, 13] and layouts == [first, far]
+    assert tries == [(10, True), (11, True), (12, True), (13, True)]
+    # quick tries used up (1 + 3 * (N - 1) seeds): the seeds that found nothing get their
+    # full construction in seed order, then copies fill what is still missing
+    layouts, seeds = run({10: (first, first), 11: (grid(range(6)), None), 12: (None, far)}, 3)
+    assert tries[:7] == [(s, True) for s in range(10, 17)]
+    assert tries[7:] == [(s, False) for s in range(12, 17)]
+    assert seeds == [10, 12, 11] and layouts == [first, far, grid(range(6))]
+    # quick tries that mostly fail stop at 2 failures per variant asked for (10 of 13 here)
+    layouts, seeds = run({10: (first, first)}, 5)
+    assert tries == [(s, True) for s in range(10, 21)] + [(s, False) for s in range(11, 21)]
+    assert seeds == [10, None, None, None, None] and layouts == [first, None, None, None, None]
+    # nothing at all: no layout, no seed
+    layouts, seeds = run({}, 1)
+    assert tries == [(10, True), (10, False)] and layouts == [None] and seeds == [None]
+
+
+def test_new_arrangements_on_two_workers_are_those_of_one(tmp_path):
+    # outcomes are taken in seed order whichever worker finishes first
+    spec = tree_spec()
+    options = SolveOptions(time_limit=20, quiet=True)
+    one = compile_variants(spec, 3, seed=4, options=options, workers=1)
+    two = compile_variants(spec, 3, seed=4, options=options, workers=2)
+    assert one.seeds == two.seeds
+    assert [layout.rooms for layout in one.layouts] == [layout.rooms for layout in two.layouts]
 
 
 def test_blocks_sharing_a_room_are_joined_and_solved_together():
