@@ -120,6 +120,22 @@ def test_compile_variants_command_reports_pairwise_differences(tmp_path, capsys)
     assert report["pairwise_differences"][0]["difference"] > 0
 
 
+def test_compile_variants_command_shows_each_variant_kept(tmp_path, capsys):
+    from layoutdsl.cli import main
+    from layoutdsl.syntax.format import format_spec
+
+    spec_path = tmp_path / "tree.lay"
+    spec_path.write_text(format_spec(tree_spec()))
+    code = main(["compile", str(spec_path), "-o", str(tmp_path / "out"), "--emit", "xml",
+                 "--variants", "2", "--workers", "1", "--time-limit", "20", "--seed", "3"])
+    captured = capsys.readouterr()
+    assert code == 0, captured.err
+    report = json.loads((tmp_path / "out" / "tree-variants.json").read_text())
+    seeds = [v["seed"] for v in report["variants"]]
+    assert captured.err.splitlines()[-2:] == [f"variant 1 of 2: seed {seeds[0]} (quick try)",
+                                              f"variant 2 of 2: seed {seeds[1]} (quick try)"]
+
+
 def test_cycle_blocks_are_the_biconnected_parts_of_three_rooms_or_more():
     from layoutdsl.compile.generate import cycle_blocks
 
