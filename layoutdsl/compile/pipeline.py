@@ -27,6 +27,7 @@ from layoutdsl.model import (
     build_model,
     objective_of_rects,
     rects_from_model,
+    settle_separations,
     warm_start_from_rects,
 )
 from layoutdsl.solve import (
@@ -129,8 +130,12 @@ def compile_from_start(
         rects_start = None
     if spec.arms:
         return _compile_l_rooms(spec, options, rects_start, start_provider, progress, timings, began, deadline)
+    # a verified start polished with nothing searched after: the model needs only the
+    # separations of the start's relations (model.settle_separations, in _polish_start)
+    settle = (options.strategy != "thesis" and not options.search and rects_start is not None
+              and _verified_start(spec, rects_start)[0] is not None)
     t0 = time.monotonic()
-    model = build_model(spec, formulation=formulation)
+    model = build_model(spec, formulation=formulation, defer_separations=settle)
     timings["build"] = time.monotonic() - t0
     if options.strategy != "thesis" and rects_start is None:
         probe = _presolve_probe(model, options, timings)
@@ -182,7 +187,8 @@ def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, R
     boxes, joined = lshape.boxes_spec(spec, rects_start)
     joins = {pair: lshape.join_option(rects_start[pair[0]], rects_start[pair[1]]) for pair in joined}
     t0 = time.monotonic()
-    model = build_model(boxes, formulation=options.formulation, joins=joins, crossing=lshape.crossings(spec))
+    model = build_model(boxes, formulation=options.formulation, joins=joins, crossing=lshape.crossings(spec),
+                        defer_separations=not options.search)
     timings["build"] = time.monotonic() - t0
     polished = _polish_start(model, boxes, options, rects_start, deadline, progress, timings)
     outcome = _search_whole_model(model, boxes, options, rects_start, polished, deadline, progress, timings)
@@ -271,6 +277,8 @@ def _polish_start(model, spec: Spec, options: SolveOptions, rects_start: dict[st
     """
     polished: dict[str, Rect] | None = None
     warm_start_from_rects(model, spec, rects_start)
+    if not hasattr(model.eq5_8_non_overlap, "separate"):
+        settle_separations(model)  # built with them deferred: the start's relations, fixed
     # the start's relations with their best sizes and places: a much better start for SCIP
     t0 = time.monotonic()
     share = max(0.2, min(POLISH_SHARE * options.time_limit, deadline - time.monotonic()))

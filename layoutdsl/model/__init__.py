@@ -47,10 +47,11 @@ Deliberate differences from the equations as printed, each exact or a valid tigh
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import replace
 
 import pyomo.environ as pyo
 
-from layoutdsl.model.equations import UNITS, fix_relations, join_l_arms
+from layoutdsl.model.equations import UNITS, fix_relations, join_l_arms, settle_separations
 from layoutdsl.model.formulation import (
     BOUNDARY_SIDES,
     OPPOSITE_SIDE,
@@ -77,7 +78,7 @@ __all__ = [
     "BOUNDARY_SIDES", "CONSTRAINT_FAMILIES", "OPPOSITE_SIDE", "SIDES", "THESIS_AS_WRITTEN",
     "Formulation", "ModelData", "best_orientation", "build_model", "model_data",
     "objective_of_rects", "orientation_bounds", "orientation_targets", "rects_from_model",
-    "relations_of_rects", "room_bounds", "target_area", "warm_start_from_rects",
+    "relations_of_rects", "room_bounds", "settle_separations", "target_area", "warm_start_from_rects",
 ]  # fmt: skip
 
 
@@ -88,6 +89,7 @@ def build_model(
     formulation: Formulation = Formulation(),
     joins: Mapping[tuple[str, str], str] | None = None,
     crossing: Mapping[tuple[str, str], bool] | None = None,
+    defer_separations: bool = False,
 ) -> pyo.ConcreteModel:
     """The MIQP of the thesis, §5.5.1, for a checked spec (no solving).
 
@@ -98,8 +100,13 @@ def build_model(
     `joins` maps (room box, arm box) pairs of L-shaped rooms to their join option
     (`equations.join_l_arms`); the spec is then the one of their boxes
     (compile.lshape.boxes_spec), each arm a room of its own.
+
+    `defer_separations`: the (5.8) constraints wait for equations.settle_separations, after
+    a warm start has put the relations on the model (ModelData.defer_separations).
     """
     data = model_data(spec, formulation)
+    if defer_separations:
+        data = replace(data, defer_separations=True)
     m = pyo.ConcreteModel(name=spec.name)
     m.formulation = formulation
     for unit in UNITS:

@@ -179,6 +179,9 @@ class ModelData:
     """Per room: (smaller, larger) of its two maximum sizes."""
     global_m: float
     """The thesis' single M: at least every per-constraint value."""
+    defer_separations: bool = False
+    """(5.8) is built without its constraints; equations.settle_separations adds those of
+    the relations a start puts on the model (a polish that searches nothing else)."""
 
     def big_m(self, value: float) -> float:
         """The big-M of one constraint: `value` (its worst violation) or the thesis' single M."""

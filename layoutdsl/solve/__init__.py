@@ -433,8 +433,10 @@ def _idle_separations(model: pyo.ConcreteModel) -> list:
         sides = [(s, block.side[a, b, s]) for s in model.sides]
         if not all(var.fixed for _, var in sides):
             continue
-        idle += [block.separate[a, b, s] for s, var in sides if round(var.value) == 0]
-        if sum(round(var.value) for _, var in sides) >= 1:
+        # a settled model (settle_separations) has only the separations that bind
+        idle += [block.separate[a, b, s] for s, var in sides
+                 if round(var.value) == 0 and (a, b, s) in block.separate]
+        if sum(round(var.value) for _, var in sides) >= 1 and (a, b) in block.one_side:
             idle.append(block.one_side[a, b])
     return [constraint for constraint in idle if constraint.active]
 

@@ -149,3 +149,20 @@ def test_the_same_seed_gives_the_same_l_layout(out: Path, tmp_path: Path) -> Non
     again = Layout.from_json((tmp_path / "l_corridor.layout.json").read_text())
     assert (first.rooms, first.portals) == (again.rooms, again.portals)
     assert (out / "l_corridor.xml").read_bytes() == (tmp_path / "l_corridor.xml").read_bytes()
+
+
+def test_variants_of_the_l_spec_keep_the_l_and_verify(tmp_path: Path) -> None:
+    # a variant polishes its start with nothing searched after: the model is built with
+    # only the separations of the start's relations, the L's join kept (model.settle_separations)
+    from layoutdsl.compile.variants import compile_variants
+    from layoutdsl.layout.verify import verify
+    from layoutdsl.solve import SolveOptions
+    from layoutdsl.api import load_spec
+
+    spec, diagnostics = load_spec(str(SPEC))
+    assert spec is not None, diagnostics
+    result = compile_variants(spec, 2, seed=0, options=SolveOptions(time_limit=20, quiet=True), workers=1)
+    assert all(layout is not None for layout in result.layouts)
+    for layout in result.layouts:
+        assert verify(spec, layout) == []
+        assert layout.room("C0").arm is not None

@@ -72,3 +72,34 @@ def test_the_polish_leaves_out_only_separations_that_cannot_bind(monkeypatch):
     # three sides and the "one side" constraint of every pair with its four ω fixed
     assert pairs > 0 and left_out[0] >= pairs
     assert objectives[0] == pytest.approx(objectives[1], rel=1e-6, abs=1e-6)
+
+
+def test_a_settled_model_builds_only_the_start_s_separations_and_polishes_the_same():
+    from planted import planted
+
+    from layoutdsl.model import settle_separations
+
+    spec_, planted_rects = planted(3, 2)
+    rects = {r: (x, y, 0.9 * w, 0.9 * h) for r, (x, y, w, h) in planted_rects.items()}
+    objectives, built, polished = [], [], []
+    for deferred in (False, True):
+        model = build_model(spec_, defer_separations=deferred)
+        assert hasattr(model.eq5_8_non_overlap, "separate") is not deferred
+        warm_start_from_rects(model, spec_, rects)
+        if deferred:
+            settle_separations(model)
+        built.append(len(model.eq5_8_non_overlap.separate) + len(model.eq5_8_non_overlap.one_side))
+        outcome = polish(model, SolveOptions(time_limit=20, quiet=True))
+        assert outcome.has_solution
+        objectives.append(outcome.objective)
+        polished.append(rects_from_model(model))
+        assert verify(spec_, layout_from_rects(spec_, polished[-1])) == []
+    pairs = len(model.eq5_8_non_overlap.pairs)
+    # one separation per pair, where the whole model has four and a "one side at least"
+    assert built == [5 * pairs, pairs]
+    # the start's relations stay: each pair keeps the side the warm start put it on
+    side = model.eq5_8_non_overlap.side
+    assert all(side[a, b, s].fixed for a, b in model.eq5_8_non_overlap.pairs for s in model.sides)
+    assert objectives[0] == pytest.approx(objectives[1], rel=1e-6, abs=1e-6)
+    for room_id, rect in polished[0].items():
+        assert polished[1][room_id] == pytest.approx(rect, abs=1e-3)
