@@ -997,7 +997,7 @@ def construct_start(
     spare_cores: bool = True,
     max_geometries: int | None = None,
     try_seconds: float | None = None,
-    choices: int | None = None,
+    choices: int = TOP_CHOICES,
 ) -> dict[str, Rect] | None:
     """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
 
@@ -1039,7 +1039,7 @@ def construct_start(
         # variants a minute annealing beside the repairs, 14 without
         order = None
     annealing = _Annealing(drawn, seed, deadline, order) if order else None
-    candidates = _seed_geometries(drawn, rng, randomize, use_hints, templates, choices or TOP_CHOICES)
+    candidates = _seed_geometries(drawn, rng, randomize, use_hints, templates, choices)
     try:
         return _first_repaired(spec, problem, candidates, deadline, seed, rng, annealing, max_geometries,
                                try_seconds)

@@ -132,8 +132,9 @@ def compile_from_start(
         return _compile_l_rooms(spec, options, rects_start, start_provider, progress, timings, began, deadline)
     # a verified start polished with nothing searched after: the model needs only the
     # separations of the start's relations (model.settle_separations, in _polish_start)
-    settle = (options.strategy != "thesis" and not options.search and rects_start is not None
-              and _verified_start(spec, rects_start)[0] is not None)
+    checked = (_verified_start(spec, rects_start)
+               if options.strategy != "thesis" and not options.search and rects_start is not None else None)
+    settle = checked is not None and checked[0] is not None
     t0 = time.monotonic()
     model = build_model(spec, formulation=formulation, defer_separations=settle)
     timings["build"] = time.monotonic() - t0
@@ -144,7 +145,7 @@ def compile_from_start(
         rects_start = _provided_start(spec, options, start_provider, timings)
         if rects_start is None and no_start_fallback is not None:
             return _run_fallback(spec, options, deadline, progress, no_start_fallback)
-    rects_start, method = _verified_start(spec, rects_start)
+    rects_start, method = checked if checked is not None else _verified_start(spec, rects_start)
 
     polished: dict[str, Rect] | None = None
     if rects_start is not None:

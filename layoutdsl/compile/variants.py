@@ -31,11 +31,11 @@ import random
 import time
 from collections import deque
 from collections.abc import Callable
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, replace
 from itertools import combinations
 from pathlib import Path
 
+from layoutdsl.compile.generate import TOP_CHOICES
 from layoutdsl.syntax.ast import Position, Spec
 from layoutdsl.layout import Layout
 
@@ -194,7 +194,7 @@ def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str 
                                 use_hints=from_hints, deadline=time.monotonic() + START_SHARE * limit,
                                 spare_cores=spare_cores, max_geometries=QUICK_GEOMETRIES if quick else None,
                                 try_seconds=QUICK_TRY_SECONDS if quick else None,
-                                choices=VARIANT_CHOICES if quick else None)
+                                choices=VARIANT_CHOICES if quick else TOP_CHOICES)
         if rects is None:
             continue
         variant_options = replace(options, time_limit=max(0.5, limit - (time.monotonic() - attempt_began)),
@@ -369,18 +369,8 @@ def _in_seed_order(spec: Spec, jobs: list, workers: int, enough: Callable[[], bo
 
 
 def _run_jobs(spec: Spec, jobs: list, workers: int) -> list:
-    """(layout, position kept) per job, on `workers` forked processes (or in this one)."""
-    global _SPEC_FOR_WORKERS
-    if workers > 1 and "fork" in multiprocessing.get_all_start_methods():
-        _SPEC_FOR_WORKERS = spec
-        try:
-            context = multiprocessing.get_context("fork")
-            with ProcessPoolExecutor(max_workers=workers, mp_context=context) as pool:
-                return list(pool.map(_solve_variant, jobs))
-        finally:
-            _SPEC_FOR_WORKERS = None
-    return [_compile_variant(spec, seed, options, point, source, quick=quick)
-            for seed, options, point, source, quick in jobs]
+    """(layout, position kept) per job, in job order: every job, `workers` at a time."""
+    return [result for _, result in _in_seed_order(spec, jobs, workers, enough=lambda: False)]
 
 
 def _write(
