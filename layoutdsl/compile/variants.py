@@ -194,7 +194,7 @@ def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str 
                                 use_hints=from_hints, deadline=time.monotonic() + START_SHARE * limit,
                                 spare_cores=spare_cores, max_geometries=QUICK_GEOMETRIES if quick else None,
                                 try_seconds=QUICK_TRY_SECONDS if quick else None,
-                                choices=VARIANT_CHOICES if quick else TOP_CHOICES)
+                                choices=VARIANT_CHOICES if quick else TOP_CHOICES, quick=quick)
         if rects is None:
             continue
         variant_options = replace(options, time_limit=max(0.5, limit - (time.monotonic() - attempt_began)),

@@ -84,3 +84,46 @@ def test_hints_still_construct_with_every_far_pair_left_out(monkeypatch):
     assert rects is not None
     assert construct.hard_violations(spec, rects) == []
     assert verify(spec, construct.rects_to_layout(spec, rects)) == []
+
+
+def _repair_of_a_pile(**kwargs):
+    """(rects or None, total stretch of each round) of tree_spec's pile, repaired from scratch:
+    46 m stretched in the first round, none in the second."""
+    import time
+
+    spec = tree_spec()
+    geometry = {r.id: (8.0 + 0.3 * i, 6.0 + 0.2 * i, r.target_w, r.target_h) for i, r in enumerate(spec.rooms)}
+    problem = construct._Problem.of(spec)
+    rounds: list[float] = []
+    solve = construct._solve_model
+
+    def counted(*args, **kw):
+        outcome = solve(*args, **kw)
+        if outcome is not None and kw.get("mode") == "repair":
+            rounds.append(sum(outcome.stretched.values()))
+        return outcome
+
+    construct._solve_model = counted
+    try:
+        rects = construct._repair(problem, geometry, time.monotonic() + 30.0, 0, **kwargs)
+    finally:
+        construct._solve_model = solve
+    if rects is not None:
+        assert construct.hard_violations(spec, rects) == []
+    return rects, rounds
+
+
+def test_a_quick_repair_gives_up_a_geometry_whose_first_round_stretches_too_much():
+    rects, rounds = _repair_of_a_pile()
+    assert rects is not None and rounds[0] > construct.QUICK_FIRST_STRETCH_M and rounds[-1] == 0
+    rects, rounds = _repair_of_a_pile(quick=True)
+    assert rects is None and len(rounds) == 1
+
+
+def test_a_quick_repair_stops_after_its_rounds(monkeypatch):
+    monkeypatch.setattr(construct, "QUICK_FIRST_STRETCH_M", 1e9)
+    rects, rounds = _repair_of_a_pile(quick=True)
+    assert rects is not None and len(rounds) == 2  # the second round ends at no stretch
+    monkeypatch.setattr(construct, "QUICK_ROUNDS", 1)
+    rects, rounds = _repair_of_a_pile(quick=True)
+    assert rects is None and len(rounds) == 1
