@@ -5,6 +5,7 @@ far apart enter it when a solution needs them."""
 from __future__ import annotations
 
 from dataclasses import replace
+from pathlib import Path
 
 from layoutdsl.compile import construct
 from layoutdsl.syntax.ast import Boundary, Spec
@@ -127,3 +128,34 @@ def test_a_quick_repair_stops_after_its_rounds(monkeypatch):
     monkeypatch.setattr(construct, "QUICK_ROUNDS", 1)
     rects, rounds = _repair_of_a_pile(quick=True)
     assert rects is None and len(rounds) == 1
+
+
+def test_a_door_moves_to_the_l_rooms_box_a_round_brought_its_neighbour_to():
+    # specs/l_corridor.lay: C0's long arm lies along the bottom, its second arm rises at the
+    # right. R1 is drawn at the long arm, so its door goes there; a round that moved R1 next
+    # to the second arm moves the door with it, and the pair gets both axes to choose from.
+    from layoutdsl.api import load_spec
+    from layoutdsl.compile import lshape
+    from layoutdsl.syntax.ast import arm_id
+
+    spec, _ = load_spec(str(Path(__file__).resolve().parents[2] / "specs" / "l_corridor.lay"))
+    arm = arm_id("C0")
+
+    def problem_at(rects):
+        boxes, joins = lshape.boxes_spec(spec, rects)
+        return construct._Problem.of(boxes, joins=joins, checked=spec, crossing=lshape.crossings(spec))
+
+    drawn = {"C0": (0.0, 0.0, 10.0, 1.8), arm: (10.0, 0.0, 1.8, 8.0), "R0": (0.0, 2.0, 4.5, 4.5),
+             "R1": (5.0, 2.0, 4.5, 4.5), "E0": (0.0, 7.5, 2.5, 2.5)}
+    problem = problem_at(drawn)
+    assert frozenset(("R1", "C0")) in problem.walls and frozenset(("R1", arm)) not in problem.walls
+    options = construct._first_options(problem, drawn, free_defects=False)
+    assert construct._reboxed(problem, problem_at(drawn), drawn, options) is problem
+
+    moved = dict(drawn, R1=(5.3, 3.2, 4.5, 4.5))  # now a wall left of the arm, above C0's reach
+    nearer = problem_at(moved)
+    pair = next(p for p in problem.pairs if set(p) == {"R1", arm})
+    assert len(options[pair]) == 1
+    assert construct._reboxed(problem, nearer, drawn, options) is nearer
+    assert frozenset(("R1", arm)) in nearer.walls and frozenset(("R1", "C0")) not in nearer.walls
+    assert len(options[pair]) == 2
