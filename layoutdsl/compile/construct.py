@@ -872,8 +872,10 @@ def _repair(
         if give_way is not None and give_way():
             _debug("  gives way to an annealed geometry")
             return None
-        outcome = _solve_model(problem, geometry, options, mode="repair",
-                               seconds=min(left, 1.0 + 0.25 * left), seed=seed,
+        seconds = min(left, 1.0 + 0.25 * left)
+        if quick:
+            seconds = min(seconds, QUICK_ROUND_SECONDS)
+        outcome = _solve_model(problem, geometry, options, mode="repair", seconds=seconds, seed=seed,
                                orientations=orientations, turnable=frozenset(turnable),
                                start=start, feasibility_emphasis=stalls > 0, local=local)
         if outcome is None:
@@ -944,6 +946,12 @@ QUICK_FIRST_STRETCH_M = 6.0
 Measured on generated geometries (quick tries, seeds 0-29): of office_floorplanMAIN's 50, none
 of the 22 from 6 m up repaired, and 20 of the 28 below did; of school_wilbraham's 42, none of
 the 15 from 6 m up, 22 of the 27 below."""
+
+QUICK_ROUND_SECONDS = 1.0
+"""...and each of its rounds' MIPs stops after this long. In the same runs (2.5 s per geometry,
+so about 1.6 s for the second round's MIP) the second rounds that repaired took 0.05-0.8 s
+but for 4 of office_floorplanMAIN's 16 (1.15-1.37 s); of the 50 that did not, 44 ran into the
+time limit."""
 
 QUICK_ROUNDS = 2
 """...and when it has stretched pairs after this many rounds. In the same runs every geometry

@@ -100,8 +100,11 @@ def _repair_of_a_pile(**kwargs):
 
     def counted(*args, **kw):
         outcome = solve(*args, **kw)
-        if outcome is not None and kw.get("mode") == "repair":
-            rounds.append(sum(outcome.stretched.values()))
+        if kw.get("mode") == "repair":
+            if kwargs.get("quick"):
+                assert kw["seconds"] <= construct.QUICK_ROUND_SECONDS
+            if outcome is not None:
+                rounds.append(sum(outcome.stretched.values()))
         return outcome
 
     construct._solve_model = counted
