@@ -887,7 +887,7 @@ def _repair(
                + ", ".join(f"{a}-{b} {options[(a, b)]} {v:.2f}"
                            for (a, b), v in sorted(outcome.stretched.items())))
         total = sum(outcome.stretched.values())
-        if quick and (round_index + 1 >= QUICK_ROUNDS or total > QUICK_FIRST_STRETCH_M):
+        if quick and (round_index + 1 >= QUICK_ROUNDS or (round_index == 0 and total > QUICK_FIRST_STRETCH_M)):
             _debug("  given up (quick)")
             return None
         stalled = total > 0.95 * best_total

@@ -164,9 +164,10 @@ def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str 
     `quick`: the construction gives up after QUICK_GEOMETRIES seed geometries instead of at
     its time limit, each repaired for at most QUICK_TRY_SECONDS and given up as soon as it
     looks stuck (construct._repair's `quick`: measured on office_floorplanMAIN, seconds per
-    constructed seed 6.4 -> 4.0, and `--throughput` 16 -> 25 variants a minute). Most seeds construct from their first geometry in a second or two, a
-    few only after many (measured on school_wilbraham: 65 % of a minute's variant time went
-    to the 5 slowest of 19 seeds, up to 33 s): another seed is cheaper than those.
+    constructed seed 6.4 -> 4.0, and `--throughput` 16 -> 25 variants a minute). Most seeds
+    construct from their first geometry in a second or two, a few only after many (measured
+    on school_wilbraham: 65 % of a minute's variant time went to the 5 slowest of 19 seeds,
+    up to 33 s): another seed is cheaper than those.
     """
     from layoutdsl.compile import compile_spec
     from layoutdsl.compile.construct import construct_start
@@ -234,11 +235,11 @@ def compile_variants(
         raise ValueError(f"unknown variant source {source!r}; expected one of {SOURCES}")
     if options is None:
         options = SolveOptions.from_settings(spec.settings)
-    room = chosen_room(spec) if source == "hints" else None
     workers = max(1, min(workers or default_workers(), n))
     if source == "graph":
         results, seeds = _new_arrangements(spec, n, seed, options, workers, progress)
     else:
+        room = chosen_room(spec)
         jobs = []
         for index in range(1, n + 1):
             point = None

@@ -245,9 +245,8 @@ def settle_separations(m: pyo.ConcreteModel) -> None:
     every binary and left out the separations those make idle, without building the three
     of every four that would be left out (measured on school_wilbraham's variant starts: the
     build takes 0.09-0.16 s instead of 0.31-0.41 s). A pair without values on its ω keeps
-    its whole disjunction;
-    the pairs of an L-room's join keep none, as join_l_arms leaves them. The relations
-    stay fixed: a model settled so is polished, never searched.
+    its whole disjunction; the pairs of an L-room's join keep none, as join_l_arms leaves
+    them. The relations stay fixed: a model settled so is polished, never searched.
     """
     b = m.eq5_8_non_overlap
     joined = set(m.join_l_arms.pairs) if hasattr(m, "join_l_arms") else set()
