@@ -1112,6 +1112,13 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
     """The first seed geometry the repair turns into a layout, or None: `candidates` in turn,
     with each annealed geometry tried as soon as its run is done (_in_turn), at most
     `max_geometries` of them, each repaired for at most `try_seconds`."""
+    crossing = lshape.crossings(spec) if spec.arms else None
+
+    def rebox(rects: dict[str, Rect]) -> _Problem:
+        # the boxes' problem with each L-room's doors on its box nearest the neighbour
+        boxes, joins = lshape.boxes_spec(spec, rects)
+        return _Problem.of(boxes, joins=joins, checked=spec, crossing=crossing)
+
     repaired = 0
     for index, (kind, make_geometry, last) in enumerate(_in_turn(candidates, annealing)):
         if max_geometries is not None and repaired >= max_geometries:
@@ -1129,15 +1136,9 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
         if left <= 0.05:
             return None
         candidate_problem = problem
-        rebox = None
         if spec.arms:
             # each seed geometry says which box of an L-room meets which neighbour
             geometry = lshape.seed_arms(spec, geometry, rng, hints=kind == "hints")
-
-            def rebox(rects: dict[str, Rect]) -> _Problem:
-                boxes, joins = lshape.boxes_spec(spec, rects)
-                return _Problem.of(boxes, joins=joins, checked=spec, crossing=lshape.crossings(spec))
-
             candidate_problem = rebox(geometry)
         # a hint geometry is the likeliest and is worth a long repair; graph geometries are
         # many short tries (measured: a fresh draw beats a long repair of a stuck one)
@@ -1158,7 +1159,7 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
                         max_stalls=MAX_STALLS if kind in ("hints", "annealed") else GRAPH_MAX_STALLS,
                         free_defects=kind == "generated", local=kind == "hints",
                         give_way=_give_way(annealing, kind), quick=quick and kind == "generated",
-                        rebox=rebox if kind == "hints" else None)
+                        rebox=rebox if spec.arms and kind == "hints" else None)
         if rects is not None:
             return rects
         if annealing is not None and kind in ("generated", "graph"):
