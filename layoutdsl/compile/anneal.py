@@ -59,10 +59,16 @@ from layoutdsl.compile.generate import RoomSizes, drawn_sides
 from layoutdsl.layout.geometry import Rect
 from layoutdsl.syntax.ast import Spec
 
-MOVES_PER_ROOM = 25000
-"""Annealing moves per room (n rooms: n x this many moves, at most MAX_MOVES)."""
+MOVES_PER_ROOM = 50000
+"""Annealing moves per room (n rooms: n x this many moves, at most MAX_MOVES). Measured
+(bench/results/anneal-moves.txt, random starts, seeds 1000-1009, two runs side by side on 2
+cores): on office_floorplanLOWER, 25000 met every door in 1 run of 10 at 10.2 s a run, 50000 in
+5 at 15.0 s (a run that meets them stops after half its moves), 100000 in 5 at 20.0 s; on
+office_floor-1024x523, 25000 in none of 8, 50000 in 2 of 8 at 21.3 s."""
 
-MAX_MOVES = 2_500_000
+MAX_MOVES = 4_000_000
+"""...so office_floor-1024x523 (76 rooms) gets its 50000 a room; the 105-room school, whose
+random starts end 20-50 m from a layout either way, is held to about 30 s a run."""
 
 CHAINS = 2
 """Annealing chains run side by side (one per core of the machine the issue measures on);
