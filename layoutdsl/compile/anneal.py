@@ -75,6 +75,15 @@ CHAINS = 2
 """Annealing chains run side by side (one per core of the machine the issue measures on);
 the geometry with the least violation is kept."""
 
+GIVE_UP_AT = 0.6
+GIVE_UP_M = 5.0
+"""A run from a random sequence pair still more than GIVE_UP_M metres from a layout after
+GIVE_UP_AT of its moves stops there: it would not have met every door. Traced at 50000 moves a
+room (bench/results/anneal-moves.txt, seeds 1000-1009): on office_floorplanLOWER and
+office_floor-1024x523, the 7 runs that met every door were at most 4.7 m from it at 60 %, and
+the 11 of 13 others above 5 m ended 4.5-11.5 m away (a repair rarely finishes those). Their
+last 40 % are better spent on the next run: the worker starts one."""
+
 FROM_GEOMETRY_MOVES_PER_ROOM = 10000
 FROM_GEOMETRY_TEMPERATURE = 0.03
 """A run from a given geometry (a greedy placement the repair could not finish) is shorter
@@ -161,16 +170,19 @@ class _Arrays:
         from a random sequence pair, or from `start` (FROM_GEOMETRY_*)."""
         scale = self.width + self.height
         if start is None:
-            moves, temperature = MOVES_PER_ROOM * len(self.ids), START_TEMPERATURE
+            moves = min(MAX_MOVES, MOVES_PER_ROOM * len(self.ids))
+            temperature, give_up_step = START_TEMPERATURE, int(GIVE_UP_AT * moves)
             empty = np.zeros(0, dtype=np.int64)
             state = (empty, empty, np.zeros(0, dtype=np.bool_), np.zeros(0), np.zeros(0))
         else:
-            moves, temperature = FROM_GEOMETRY_MOVES_PER_ROOM * len(self.ids), FROM_GEOMETRY_TEMPERATURE
+            # a cool run from a geometry is short already and is never given up
+            moves = min(MAX_MOVES, FROM_GEOMETRY_MOVES_PER_ROOM * len(self.ids))
+            temperature, give_up_step = FROM_GEOMETRY_TEMPERATURE, moves
             state = self._state_of(start)
         return _anneal(self.long_side, self.short_side, self.bounds, self.edge_a, self.edge_b,
                        self.need, self.door_ptr, self.door_to, self.on_boundary, self.width,
-                       self.height, self.wall, kernel_seed, min(MAX_MOVES, moves), temperature * scale,
-                       END_TEMPERATURE * scale, cancel, *state)
+                       self.height, self.wall, kernel_seed, moves, temperature * scale,
+                       END_TEMPERATURE * scale, give_up_step, GIVE_UP_M, cancel, *state)
 
     def _state_of(self, geometry: dict[str, Rect]):
         """(P, Q, turned, long, short) of a geometry whose rectangles may overlap.
@@ -616,8 +628,8 @@ def _move_beside(seq, room, anchor, after, out):
 
 @njit(cache=True, nogil=True)
 def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, door_to, on_boundary,
-            width, height, wall, seed, moves, t_start, t_end, cancel, start_p, start_q, start_turned,
-            start_long, start_short):
+            width, height, wall, seed, moves, t_start, t_end, give_up_step, give_up_m, cancel,
+            start_p, start_q, start_turned, start_long, start_short):
     np.random.seed(seed)
     n = drawn_long.shape[0]
     m = edge_a.shape[0]
@@ -650,6 +662,8 @@ def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, doo
     for step in range(moves):
         if step % CANCEL_CHECK == 0 and cancel[0]:
             break
+        if step == give_up_step and best_violation > give_up_m:
+            break  # GIVE_UP_AT
         temperature = t_start * ratio ** (step / moves)
         new_p[:] = p
         new_q[:] = q
