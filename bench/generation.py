@@ -84,6 +84,22 @@ def _layout_row(spec, layout, area, original_fill, centres) -> dict:
     }
 
 
+def _warm_annealer() -> dict:
+    """Anneal a small bundled spec once, so numba compiles the annealer's kernel (about 10 s)
+    and caches it before any plan is timed: a plan's first-layout time is then what a user
+    gets from the second compile on, not the install's one-off compile."""
+    import importlib.util
+
+    if importlib.util.find_spec("numba") is None:
+        return {"warmed": False}
+    from layoutdsl.api import lint_source, read_source
+    from layoutdsl.compile.anneal import anneal_geometry
+
+    spec_path = Path(__file__).resolve().parents[1] / "specs" / "school_cycle.lay"
+    spec, _ = lint_source(read_source(str(spec_path)))
+    return {"warmed": anneal_geometry(spec, 0) is not None}
+
+
 def _compile_plan(path: str, time_limit: float, seed: int) -> dict:
     from layoutdsl.compile import compile_spec
     from layoutdsl.compile.cycles import cycle_rank
@@ -102,6 +118,10 @@ def _compile_plan(path: str, time_limit: float, seed: int) -> dict:
     else:
         row["verified"] = False
     return row
+
+
+WARM_SECONDS = 120.0
+"""Most the annealer's warm-up (_warm_annealer) may take."""
 
 
 def isolated(function, *args, limit: float) -> dict:
@@ -298,6 +318,7 @@ def main(argv: list[str] | None = None) -> int:
             f"{key:28} {value}" for key, value in result.items()))
     else:
         rows = []
+        isolated(_warm_annealer, limit=WARM_SECONDS)
         if not args.json:
             emit(header())
         for path in sorted(args.folder.glob("*.xml")):
