@@ -61,17 +61,11 @@ from layoutdsl.layout.geometry import Rect
 from layoutdsl.syntax.ast import Spec
 
 MOVES_PER_ROOM = 50000
-"""Annealing moves per room of the largest plans; a plan of n rooms gets n x
-min(MOVES_PER_ROOM, max(MIN_MOVES_PER_ROOM, MOVES_PER_ROOM_PER_ROOM x n)) moves, at most
-MAX_MOVES: larger plans need more moves a room. Measured (bench/results/anneal-moves.txt,
-random starts, seeds 1000-1009, two runs side by side on 2 cores), runs that met every door:
-office_floorplanLOWER (59 drawn rooms) 1 of 10 at 25000, 4 at 38000 (6.8 s a run), 5 at 50000,
-5 at 100000 (20 s); office_floor-1024x523 (76) none of 8 at 25000, 2 of 8 at 50000;
-school_scuolasconosciuta2 (44) 3 of 10 at 25000 (2.7 s a run), 4 at 28000 (3.3 s), 3 at 50000
-(6.7 s)."""
-
-MIN_MOVES_PER_ROOM = 25000
-MOVES_PER_ROOM_PER_ROOM = 650
+"""Annealing moves per room (n rooms: n x this many moves, at most MAX_MOVES). Measured
+(bench/results/anneal-moves.txt, random starts, seeds 1000-1009, two runs side by side on 2
+cores): on office_floorplanLOWER, 25000 met every door in 1 run of 10 at 10.2 s a run, 50000 in
+5 at 15.0 s (a run that meets them stops after half its moves), 100000 in 5 at 20.0 s; on
+office_floor-1024x523, 25000 in none of 8, 50000 in 2 of 8 at 21.3 s."""
 
 MAX_MOVES = 4_000_000
 """...so office_floor-1024x523 (76 rooms) gets its 50000 a room; the 105-room school, whose
@@ -176,7 +170,7 @@ class _Arrays:
         from a random sequence pair, or from `start` (FROM_GEOMETRY_*)."""
         scale = self.width + self.height
         if start is None:
-            moves = min(MAX_MOVES, random_start_moves(len(self.ids)))
+            moves = min(MAX_MOVES, MOVES_PER_ROOM * len(self.ids))
             temperature, give_up_step = START_TEMPERATURE, int(GIVE_UP_AT * moves)
             empty = np.zeros(0, dtype=np.int64)
             state = (empty, empty, np.zeros(0, dtype=np.bool_), np.zeros(0), np.zeros(0))
@@ -215,12 +209,6 @@ class _Arrays:
                              self.door_ptr, self.door_to)
         return ({room_id: (float(x[i]), float(y[i]), float(w[i]), float(h[i]))
                  for i, room_id in enumerate(self.ids)}, float(violation))
-
-
-def random_start_moves(rooms: int) -> int:
-    """Moves of a run from a random sequence pair of `rooms` rooms (MOVES_PER_ROOM)."""
-    per_room = min(MOVES_PER_ROOM, max(MIN_MOVES_PER_ROOM, MOVES_PER_ROOM_PER_ROOM * rooms))
-    return per_room * rooms
 
 
 def _cancel_at(deadline: float | None, cancel: np.ndarray) -> threading.Timer | None:
