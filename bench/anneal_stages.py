@@ -21,7 +21,7 @@ A second stage runs only from a first stage within --stage-max metres of a layou
 table, the doors left unmet (over 0.05 m) by the whole-plan runs, most frequent first: where
 the annealer falls short.
 
-It drives the annealing kernel directly (private names of layoutdsl.compile.anneal): staging is
+It drives the annealer's chains directly (layoutdsl.compile.anneal._Arrays): staging is
 not in the construction, because it did not pay (bench/results/anneal-stages.txt).
 
     python bench/anneal_stages.py [XML] [--seeds 4] [--modes whole,core,contract] [--out FILE]
@@ -54,7 +54,6 @@ class Stages:
         from layoutdsl.compile import anneal, lshape
         from layoutdsl.compile.generate import drawn_sides, room_graph
 
-        self.anneal = anneal
         self.drawn = lshape.seeds_spec(spec)
         self.graph = room_graph(self.drawn)
         self.core = set(nx.k_core(self.graph, 2))
@@ -135,16 +134,8 @@ class Stages:
                 new_long, new_short)
 
     def second_stage(self, state, seed: int):
-        anneal, whole = self.anneal, self.whole
-        moves = min(anneal.MAX_MOVES, anneal.FROM_GEOMETRY_MOVES_PER_ROOM * len(whole.ids))
-        scale = whole.width + whole.height
         began = time.monotonic()
-        result = anneal._anneal(whole.long_side, whole.short_side, whole.bounds, whole.edge_a,
-                                whole.edge_b, whole.need, whole.door_ptr, whole.door_to,
-                                whole.on_boundary, whole.width, whole.height, whole.wall,
-                                2000 + seed, moves, anneal.FROM_GEOMETRY_TEMPERATURE * scale,
-                                anneal.END_TEMPERATURE * scale, moves, math.inf, self.cancel, *state)
-        return result, time.monotonic() - began
+        return self.whole.chain_from(2000 + seed, self.cancel, state), time.monotonic() - began
 
     def unmet(self, result) -> list[tuple[float, str, str]]:
         """(metres, room, room) of each door the packing leaves unmet, measured on its

@@ -168,8 +168,13 @@ class _Arrays:
     def chain(self, kernel_seed: int, cancel: np.ndarray, start: dict[str, Rect] | None = None):
         """One annealing chain (the kernel releases the GIL), cut off when cancel[0] is set:
         from a random sequence pair, or from `start` (FROM_GEOMETRY_*)."""
+        return self.chain_from(kernel_seed, cancel, None if start is None else self._state_of(start))
+
+    def chain_from(self, kernel_seed: int, cancel: np.ndarray, state=None):
+        """chain() from a state (P, Q, turned, long, short; _state_of) instead of a geometry:
+        bench/anneal_stages.py builds one from a smaller plan's sequence pair."""
         scale = self.width + self.height
-        if start is None:
+        if state is None:
             moves = min(MAX_MOVES, MOVES_PER_ROOM * len(self.ids))
             temperature, give_up_step = START_TEMPERATURE, int(GIVE_UP_AT * moves)
             empty = np.zeros(0, dtype=np.int64)
@@ -178,7 +183,6 @@ class _Arrays:
             # a cool run from a geometry is short already and is never given up
             moves = min(MAX_MOVES, FROM_GEOMETRY_MOVES_PER_ROOM * len(self.ids))
             temperature, give_up_step = FROM_GEOMETRY_TEMPERATURE, moves
-            state = self._state_of(start)
         return _anneal(self.long_side, self.short_side, self.bounds, self.edge_a, self.edge_b,
                        self.need, self.door_ptr, self.door_to, self.on_boundary, self.width,
                        self.height, self.wall, kernel_seed, moves, temperature * scale,
