@@ -97,7 +97,7 @@ class Stages:
     def expanded(self, arrays, result, seed: int):
         """The whole plan's state: the first stage's sequence pair with each stand-in as its
         tree's first room, and every room not yet in it beside the room it hangs off."""
-        p, q, turned, long_side, short_side, *_ = result
+        p, q, turned, long_side, short_side, _ = result
         whole = self.whole
         rng = random.Random(seed)
         new_turned = np.zeros(len(whole.ids), dtype=np.bool_)

@@ -117,11 +117,6 @@ RESIZE_STEP = 0.15
 RESIZE_WEIGHT = 0.05
 """Per metre a side is from its drawn length: rooms stay near their targets."""
 
-ALIGN_RANDOM_STARTS = True
-"""Runs from a random sequence pair pack with `align` (_pack_into): a room whose door
-neighbour right of (above) it sits higher (further right) moves or grows towards it until
-they share the door's wall. Runs from a geometry pack without it."""
-
 START_TEMPERATURE = 0.1
 """...times (W + H): the temperature of the first moves, in metres of violation."""
 
@@ -142,7 +137,6 @@ class _Arrays:
     need: np.ndarray
     door_ptr: np.ndarray
     door_to: np.ndarray
-    door_need: np.ndarray
     on_boundary: np.ndarray
     width: float
     height: float
@@ -158,7 +152,7 @@ class _Arrays:
         utilization = spec.settings.door_utilization
         edges = [(index[adj.a], index[adj.b], adj.door / utilization) for adj in spec.adjacencies
                  if adj.a in index and adj.b in index]
-        door_ptr, door_to, door_need = _door_lists(len(ids), edges)
+        door_ptr, door_to = _door_lists(len(ids), edges)
         return cls(
             ids=ids,
             long_side=np.array([sides[room_id][0] for room_id in ids], dtype=np.float64),
@@ -167,7 +161,7 @@ class _Arrays:
             edge_a=np.array([e[0] for e in edges], dtype=np.int64),
             edge_b=np.array([e[1] for e in edges], dtype=np.int64),
             need=np.array([e[2] for e in edges], dtype=np.float64),
-            door_ptr=door_ptr, door_to=door_to, door_need=door_need,
+            door_ptr=door_ptr, door_to=door_to,
             on_boundary=np.array([room.on_boundary for room in spec.rooms], dtype=np.bool_),
             width=boundary.w, height=boundary.h, wall=spec.settings.walldim)
 
@@ -180,7 +174,6 @@ class _Arrays:
         """chain() from a state (P, Q, turned, long, short; _state_of) instead of a geometry:
         bench/anneal_stages.py builds one from a smaller plan's sequence pair."""
         scale = self.width + self.height
-        align = state is None and ALIGN_RANDOM_STARTS
         if state is None:
             moves = min(MAX_MOVES, MOVES_PER_ROOM * len(self.ids))
             temperature, give_up_step = START_TEMPERATURE, int(GIVE_UP_AT * moves)
@@ -191,7 +184,7 @@ class _Arrays:
             moves = min(MAX_MOVES, FROM_GEOMETRY_MOVES_PER_ROOM * len(self.ids))
             temperature, give_up_step = FROM_GEOMETRY_TEMPERATURE, moves
         return _anneal(self.long_side, self.short_side, self.bounds, self.edge_a, self.edge_b,
-                       self.need, self.door_ptr, self.door_to, self.door_need, align, self.on_boundary, self.width,
+                       self.need, self.door_ptr, self.door_to, self.on_boundary, self.width,
                        self.height, self.wall, kernel_seed, moves, temperature * scale,
                        END_TEMPERATURE * scale, give_up_step, GIVE_UP_M, cancel, *state)
 
@@ -215,9 +208,9 @@ class _Arrays:
 
     def geometry(self, result) -> tuple[dict[str, Rect], float]:
         """The packed rectangles of a chain's best state, and its violation."""
-        p, q, turned, long_side, short_side, violation, align = result
+        p, q, turned, long_side, short_side, violation = result
         x, y, w, h = _packed(p, q, turned, long_side, short_side, self.bounds, self.wall,
-                             self.door_ptr, self.door_to, self.door_need, align)
+                             self.door_ptr, self.door_to)
         return ({room_id: (float(x[i]), float(y[i]), float(w[i]), float(h[i]))
                  for i, room_id in enumerate(self.ids)}, float(violation))
 
@@ -374,18 +367,16 @@ def _bounds(sizes: RoomSizes) -> tuple[float, ...]:
     return (sizes.lo_long, sizes.hi_long, sizes.lo_short, sizes.hi_short, sizes.min_ar, sizes.max_ar)
 
 
-def _door_lists(n: int, edges: list[tuple[int, int, float]]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Each room's door neighbours, CSR-style: door_to[door_ptr[i]:door_ptr[i + 1]], with the
-    shared wall each door needs in door_need."""
-    lists: list[list[tuple[int, float]]] = [[] for _ in range(n)]
-    for a, b, need in edges:
-        lists[a].append((b, need))
-        lists[b].append((a, need))
+def _door_lists(n: int, edges: list[tuple[int, int, float]]) -> tuple[np.ndarray, np.ndarray]:
+    """Each room's door neighbours, CSR-style: door_to[door_ptr[i]:door_ptr[i + 1]]."""
+    lists: list[list[int]] = [[] for _ in range(n)]
+    for a, b, _ in edges:
+        lists[a].append(b)
+        lists[b].append(a)
     door_ptr = np.zeros(n + 1, dtype=np.int64)
     door_ptr[1:] = np.cumsum([len(neighbours) for neighbours in lists])
-    door_to = np.array([b for neighbours in lists for b, _ in neighbours], dtype=np.int64)
-    door_need = np.array([need for neighbours in lists for _, need in neighbours], dtype=np.float64)
-    return door_ptr, door_to, door_need
+    door_to = np.array([b for neighbours in lists for b in neighbours], dtype=np.int64)
+    return door_ptr, door_to
 
 
 _Work = namedtuple("_Work", "pos_p pos_q w h max_w max_h x y right_edges top_edges left_edges bottom_edges")
@@ -438,7 +429,7 @@ def _growth_limits_into(long_side, short_side, turned, bounds, max_w, max_h):
 
 
 @njit(cache=True)
-def _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, door_need, along_x):
+def _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, along_x):
     """Whether a door neighbour of `a` placed before it in Q (left of it when along_x,
     else below it) already touches it."""
     for e in range(door_ptr[a], door_ptr[a + 1]):
@@ -455,19 +446,19 @@ def _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, doo
 
 
 @njit(cache=True)
-def _pack(p, q, w, h, wall, door_ptr, door_to, door_need, max_w, max_h, align=True):
+def _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h):
     """(x, y, w, h) of a sequence pair (_pack_into, on arrays of its own)."""
     n = p.shape[0]
     work = _new_work(n)
     work.w[:] = w
     work.h[:] = h
     _positions_into(p, q, work.pos_p, work.pos_q)
-    _pack_into(p, q, work, wall, door_ptr, door_to, door_need, max_w, max_h, align)
+    _pack_into(p, q, work, wall, door_ptr, door_to, max_w, max_h)
     return work.x, work.y, work.w, work.h
 
 
 @njit(cache=True)
-def _pack_into(p, q, work, wall, door_ptr, door_to, door_need, max_w, max_h, align):
+def _pack_into(p, q, work, wall, door_ptr, door_to, max_w, max_h):
     """A sequence pair's tightest packing, then each room stretched or pulled towards the
     rooms it has a door to: into work.x, work.y, work.w, work.h (the rooms' sides on entry;
     work.pos_p and work.pos_q hold p's and q's positions).
@@ -481,10 +472,7 @@ def _pack_into(p, q, work, wall, door_ptr, door_to, door_need, max_w, max_h, ali
     towards them (up to max_w, max_h: its bounds) and keeps that door; the rest of the gap,
     or all of it for a room with no such door, is closed by moving the room. A rung between
     two rails of corridors is thus lengthened to meet both rails, as the repair's LP would.
-    With `align`, the same sweep also lines a room up with those neighbours across the
-    door: a room whose neighbour right of it stands higher moves up (grows, if it meets a
-    door before it) until they share the door's wall (door_need), and likewise rightwards
-    for a neighbour above it. No sweep moves or grows a room into another, so the packing stays one. The annealer
+    No sweep moves or grows a room into another, so the packing stays one. The annealer
     packs millions of times a run: nothing here allocates (measured on office_floor-1024x523, 76
     rooms: 7.3 us a move when each packing made its arrays, 5.2 us now).
     """
@@ -519,42 +507,24 @@ def _pack_into(p, q, work, wall, door_ptr, door_to, door_need, max_w, max_h, ali
         limit_y = -_prefix_max(bottom_edges, i, -np.inf)
         want_x = np.inf
         want_y = np.inf
-        top_needed = -np.inf
-        right_needed = -np.inf
         for e in range(door_ptr[a], door_ptr[a + 1]):
             b = door_to[e]
             if pos_q[b] < k:
                 continue
             if pos_p[a] < pos_p[b]:
                 want_x = min(want_x, x[b] - wall)
-                top_needed = max(top_needed, y[b] + door_need[e])
             else:
                 want_y = min(want_y, y[b] - wall)
-                right_needed = max(right_needed, x[b] + door_need[e])
         if want_x < np.inf and want_x > x[a] + w[a]:
             edge = min(want_x, limit_x)
-            if _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, door_need, True):
+            if _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, True):
                 w[a] = max(w[a], min(max_w[a], edge - x[a]))
             x[a] = max(x[a], edge - w[a])
         if want_y < np.inf and want_y > y[a] + h[a]:
             edge = min(want_y, limit_y)
-            if _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, door_need, False):
+            if _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, False):
                 h[a] = max(h[a], min(max_h[a], edge - y[a]))
             y[a] = max(y[a], edge - h[a])
-        if align and top_needed > y[a] + h[a] + 1e-9:
-            top = min(top_needed, limit_y)
-            if _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, door_need, False) or \
-                    _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, door_need, True):
-                h[a] = max(h[a], min(max_h[a], top - y[a]))
-            else:
-                y[a] = max(y[a], top - h[a])
-        if align and right_needed > x[a] + w[a] + 1e-9:
-            right = min(right_needed, limit_x)
-            if _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, door_need, True) or \
-                    _touches_before(a, k, x, y, w, h, wall, pos_p, pos_q, door_ptr, door_to, door_need, False):
-                w[a] = max(w[a], min(max_w[a], right - x[a]))
-            else:
-                x[a] = max(x[a], right - w[a])
         _raise(left_edges, n - 1 - i, -(x[a] - wall))
         _raise(bottom_edges, i, -(y[a] - wall))
 
@@ -616,27 +586,27 @@ def _violation(work, edge_a, edge_b, need, on_boundary, width, height, wall, per
 
 
 @njit(cache=True)
-def _packed(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to, door_need, align):
+def _packed(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to):
     """(x, y, w, h) of a state: its rooms' sides, packed (_pack) within their growth limits."""
     work = _new_work(p.shape[0])
-    _pack_state(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to, door_need, align, work)
+    _pack_state(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to, work)
     return work.x, work.y, work.w, work.h
 
 
 @njit(cache=True)
-def _pack_state(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to, door_need, align, work):
+def _pack_state(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to, work):
     """_packed into `work`."""
     _sizes_into(long_side, short_side, turned, work.w, work.h)
     _growth_limits_into(long_side, short_side, turned, bounds, work.max_w, work.max_h)
     _positions_into(p, q, work.pos_p, work.pos_q)
-    _pack_into(p, q, work, wall, door_ptr, door_to, door_need, work.max_w, work.max_h, align)
+    _pack_into(p, q, work, wall, door_ptr, door_to, work.max_w, work.max_h)
 
 
 @njit(cache=True)
-def _evaluate(p, q, turned, long_side, short_side, bounds, edge_a, edge_b, need, door_ptr, door_to, door_need,
-              align, on_boundary, width, height, wall, per_edge, work):
+def _evaluate(p, q, turned, long_side, short_side, bounds, edge_a, edge_b, need, door_ptr, door_to,
+              on_boundary, width, height, wall, per_edge, work):
     """(violation, bounding box area) of a state; per_edge as in _violation."""
-    _pack_state(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to, door_need, align, work)
+    _pack_state(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to, work)
     return _violation(work, edge_a, edge_b, need, on_boundary, width, height, wall, per_edge)
 
 
@@ -661,7 +631,7 @@ def _move_beside(seq, room, anchor, after, out):
 
 
 @njit(cache=True, nogil=True)
-def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, door_to, door_need, align, on_boundary,
+def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, door_to, on_boundary,
             width, height, wall, seed, moves, t_start, t_end, give_up_step, give_up_m, cancel,
             start_p, start_q, start_turned, start_long, start_short):
     np.random.seed(seed)
@@ -681,8 +651,7 @@ def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, doo
     # spare arrays, which trade places with the state's when the move is taken
     work = _new_work(n)
     violation, box = _evaluate(p, q, turned, long_side, short_side, bounds, edge_a, edge_b, need,
-                               door_ptr, door_to, door_need, align, on_boundary, width, height, wall, per_edge,
-                               work)
+                               door_ptr, door_to, on_boundary, width, height, wall, per_edge, work)
     boundary_area = width * height
     cost = violation + COMPACT_WEIGHT * box / boundary_area
     resized = 0.0
@@ -770,8 +739,8 @@ def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, doo
             i = np.random.randint(n)
             new_turned[i] = not new_turned[i]
         new_violation, box = _evaluate(new_p, new_q, new_turned, new_long, new_short, bounds, edge_a,
-                                       edge_b, need, door_ptr, door_to, door_need, align, on_boundary, width,
-                                       height, wall, trial_edge, work)
+                                       edge_b, need, door_ptr, door_to, on_boundary, width, height, wall,
+                                       trial_edge, work)
         new_cost = new_violation + COMPACT_WEIGHT * box / boundary_area + RESIZE_WEIGHT * new_resized
         delta = new_cost - cost
         if delta <= 0.0 or np.random.random() < math.exp(-delta / temperature):
@@ -795,4 +764,4 @@ def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, doo
         if best_violation <= 1e-9 and step >= moves // 2:
             # a packing with every door met: the rest would only make it more compact
             break
-    return best_p, best_q, best_turned, best_long, best_short, best_violation, align
+    return best_p, best_q, best_turned, best_long, best_short, best_violation

@@ -47,8 +47,8 @@ def test_every_sequence_pair_packs_rooms_a_wall_apart(seed):
     w, h = rng.uniform(1, 6, n), rng.uniform(1, 6, n)
     max_w, max_h = w * rng.uniform(1, 2, n), h * rng.uniform(1, 2, n)
     edges = [(i, int(rng.integers(i)), 1.0) for i in range(1, n)]
-    door_ptr, door_to, door_need = _door_lists(n, edges)
-    x, y, packed_w, packed_h = _pack(p, q, w, h, wall, door_ptr, door_to, door_need, max_w, max_h)
+    door_ptr, door_to = _door_lists(n, edges)
+    x, y, packed_w, packed_h = _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h)
     assert np.all(w - TOL <= packed_w) and np.all(packed_w <= max_w + TOL)
     assert np.all(h - TOL <= packed_h) and np.all(packed_h <= max_h + TOL)
     rects = [(x[i], y[i], packed_w[i], packed_h[i]) for i in range(n)]
@@ -65,8 +65,8 @@ def test_without_doors_each_room_sits_at_the_longest_path_from_the_origin(seed):
     n, wall = 40, 0.2
     p, q = rng.permutation(n).astype(np.int64), rng.permutation(n).astype(np.int64)
     w, h = rng.uniform(1, 6, n), rng.uniform(1, 6, n)
-    door_ptr, door_to, door_need = _door_lists(n, [])
-    x, y, _, _ = _pack(p, q, w, h, wall, door_ptr, door_to, door_need, w, h)
+    door_ptr, door_to = _door_lists(n, [])
+    x, y, _, _ = _pack(p, q, w, h, wall, door_ptr, door_to, w, h)
     where_p = {room: k for k, room in enumerate(p)}
     where_q = {room: k for k, room in enumerate(q)}
     for b in q:  # Q's order: every room pushing b is placed before it
@@ -89,53 +89,11 @@ def test_a_rung_between_two_rails_is_stretched_to_meet_both():
     h = np.array([2.0, 3.0, 2.0, 5.0])
     max_w, max_h = w.copy(), h.copy()
     max_h[1] = 8.0
-    door_ptr, door_to, door_need = _door_lists(4, [(0, 1, 1.0), (1, 2, 1.0)])
-    x, y, packed_w, packed_h = _pack(p, q, w, h, wall, door_ptr, door_to, door_need, max_w, max_h)
+    door_ptr, door_to = _door_lists(4, [(0, 1, 1.0), (1, 2, 1.0)])
+    x, y, packed_w, packed_h = _pack(p, q, w, h, wall, door_ptr, door_to, max_w, max_h)
     assert y[1] == pytest.approx(y[0] + h[0] + wall)  # still on rail 0
     assert y[1] + packed_h[1] + wall == pytest.approx(y[2])  # and now up to rail 2
     assert packed_h[1] == pytest.approx(5.0)  # as tall as room 3 beside it
-
-
-@pytest.mark.parametrize("align", [True, False])
-def test_a_room_beside_a_higher_neighbour_moves_up_to_share_the_door(align):
-    """Room 1 left of room 2, which stands on room 0: packed alone, room 1 sits on the
-    floor, its top below room 2's bottom, and their door has no wall to go through. The
-    alignment moves room 1 up (it meets no door below it) until it shares the door's 1 m of
-    wall with room 2; without it room 1 stays on the floor."""
-    wall = 0.2
-    # 1 left of 2 and of 0 (before both in P and Q); 0 below 2 (after it in P, before it in Q)
-    p = np.array([1, 2, 0], dtype=np.int64)
-    q = np.array([1, 0, 2], dtype=np.int64)
-    w = np.array([4.0, 2.0, 4.0])
-    h = np.array([3.0, 2.0, 2.0])
-    door_ptr, door_to, door_need = _door_lists(3, [(1, 2, 1.0)])
-    x, y, packed_w, packed_h = _pack(p, q, w, h, wall, door_ptr, door_to, door_need, w, h, align)
-    assert y[2] == pytest.approx(h[0] + wall)
-    assert x[2] == pytest.approx(x[1] + packed_w[1] + wall)  # the door's gap is one wall
-    shared = min(y[1] + packed_h[1], y[2] + packed_h[2]) - max(y[1], y[2])
-    if align:
-        assert shared == pytest.approx(1.0)
-        assert packed_h[1] == pytest.approx(2.0)  # moved, not grown
-    else:
-        assert y[1] == pytest.approx(0.0) and shared < 0
-
-
-def test_a_room_meeting_a_door_below_grows_up_to_its_higher_neighbour_instead():
-    """As above, with room 1 standing on room 3 through a door: moving up would lose that
-    door, so room 1 grows (within its bounds) to share the wall with room 2."""
-    wall = 0.2
-    # 3 below 1 (after it in P, before it in Q) and left of 0 and 2
-    p = np.array([1, 3, 2, 0], dtype=np.int64)
-    q = np.array([3, 1, 0, 2], dtype=np.int64)
-    w = np.array([4.0, 2.0, 4.0, 2.0])
-    h = np.array([5.0, 2.0, 2.0, 1.0])
-    max_w, max_h = w.copy(), h.copy()
-    max_h[1] = 6.0
-    door_ptr, door_to, door_need = _door_lists(4, [(1, 2, 1.0), (1, 3, 1.0)])
-    x, y, packed_w, packed_h = _pack(p, q, w, h, wall, door_ptr, door_to, door_need, max_w, max_h)
-    assert y[1] == pytest.approx(y[3] + h[3] + wall)  # still on room 3
-    assert y[2] == pytest.approx(h[0] + wall)
-    assert y[1] + packed_h[1] == pytest.approx(y[2] + 1.0)  # grown to share 1 m with room 2
 
 
 def test_a_small_office_anneals_to_a_packing_with_every_door_met():
