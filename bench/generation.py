@@ -8,7 +8,10 @@ WITHOUT hints (the default), compile at default settings, and print one row:
     original room area, fill (room area / bounding box of the rooms) and the original's fill
 
 and a summary line (verified count, median / max first-layout seconds, how many meet area
-+-15 % and fill >= 0.8 x the original's). `--throughput PLAN` instead runs `compile --variants
++-15 % and fill >= 0.8 x the original's). `--seeds N` compiles each plan at seeds SEED..SEED+N-1
+(a row each, the plan's name followed by its seed) and adds a line a plan: how many verified,
+and the median and max first layout over its seeds. One seed's time says little: the same code
+took 12.7 s and 28.0 s for office_OfficePlan's seed 0 in two runs (bench/results/anneal-align.txt). `--throughput PLAN` instead runs `compile --variants
 25` on one plan (a >= 50-room one for the acceptance) with `--workers` processes and reports
 how many variants it kept within `--minutes` of wall clock (each verified and at least 0.3
 from every earlier one), when it had all 25, and their differences.
@@ -17,7 +20,7 @@ Every solve runs in its own forked process with a hard timeout, like bench/bench
 depend on the machine and its load; say so when quoting them.
 
     python bench/generation.py [FOLDER] [--time-limit 60] [--only PATTERN] [--seed 0]
-                               [--json] [--out FILE]
+                               [--seeds 1] [--json] [--out FILE]
     python bench/generation.py --throughput school_wilbraham [--minutes 1] [--workers 2]
     python bench/generation.py --variants 5 --only Sabadell3,Neulengbach1,wilbraham
 """
@@ -181,6 +184,16 @@ def summary(rows: list[dict]) -> str:
             f"fill >= 0.8 x original: {fill_ok}")
 
 
+def seed_summary(plan: str, rows: list[dict]) -> str:
+    """One plan over its seeds: how many verified, median and max first layout."""
+    firsts = sorted(row["first"] for row in rows if row.get("verified") and row.get("first") is not None)
+    verified = sum(bool(row.get("verified")) for row in rows)
+    if not firsts:
+        return f"  {plan}: verified 0/{len(rows)}"
+    return (f"  {plan}: verified {verified}/{len(rows)}; first layout median "
+            f"{statistics.median(firsts):.2f} s, max {firsts[-1]:.2f} s")
+
+
 THROUGHPUT_VARIANTS = 25
 """Variants the throughput run asks for: more than the acceptance's 20 a minute, so the
 count within the minute is not capped by the request."""
@@ -284,6 +297,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--time-limit", type=float, default=60.0, help="seconds per compile (default 60)")
     parser.add_argument("--only", metavar="PATTERN", help="plans whose file name matches (glob or substring)")
     parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--seeds", type=int, default=1, metavar="N",
+                        help="compile each plan at seeds SEED..SEED+N-1 (default 1)")
     parser.add_argument("--throughput", metavar="PLAN", help="variants-per-minute run on this plan instead")
     parser.add_argument("--minutes", type=float, default=1.0,
                         help="throughput: variants kept within this many minutes count (default 1)")
@@ -325,11 +340,16 @@ def main(argv: list[str] | None = None) -> int:
         for path in sorted(args.folder.glob("*.xml")):
             if not _matches(path.name, args.only):
                 continue
-            row = {"plan": path.stem}
-            row.update(isolated(_compile_plan, str(path), args.time_limit, args.seed,
-                                limit=args.time_limit))
-            rows.append(row)
-            emit(json.dumps(row) if args.json else format_row(row))
+            plan_rows = []
+            for seed in range(args.seed, args.seed + max(1, args.seeds)):
+                row = {"plan": path.stem if args.seeds <= 1 else f"{path.stem} s{seed}"}
+                row.update(isolated(_compile_plan, str(path), args.time_limit, seed,
+                                    limit=args.time_limit))
+                plan_rows.append(row)
+                emit(json.dumps(row) if args.json else format_row(row))
+            rows += plan_rows
+            if args.seeds > 1 and not args.json:
+                emit(seed_summary(path.stem, plan_rows))
         if not args.json:
             emit(summary(rows))
     if args.out:
