@@ -10,8 +10,9 @@ WITHOUT hints (the default), compile at default settings, and print one row:
 and a summary line (verified count, median / max first-layout seconds, how many meet area
 +-15 % and fill >= 0.8 x the original's). `--seeds N` compiles each plan at seeds SEED..SEED+N-1
 (a row each, the plan's name followed by its seed) and adds a line a plan: how many verified,
-and the median and max first layout over its seeds. One seed's time says little: the same code
-took 12.7 s and 28.0 s for office_OfficePlan's seed 0 in two runs (bench/results/anneal-align.txt). `--throughput PLAN` instead runs `compile --variants
+and the median and max first layout over its seeds. One seed's time says little: the same
+code took 12.7 s and 28.0 s for office_OfficePlan's seed 0 in two runs
+(bench/results/anneal-align.txt). `--throughput PLAN` instead runs `compile --variants
 25` on one plan (a >= 50-room one for the acceptance) with `--workers` processes and reports
 how many variants it kept within `--minutes` of wall clock (each verified and at least 0.3
 from every earlier one), when it had all 25, and their differences.
@@ -171,27 +172,22 @@ def meets(row: dict) -> tuple[bool, bool]:
     return (area is not None and abs(area - 1) <= AREA_TOLERANCE, bool(fill_ok))
 
 
-def summary(rows: list[dict]) -> str:
+def first_layouts(rows: list[dict]) -> str:
+    """How many rows verified, and the median and max of their first-layout seconds."""
     verified = [row for row in rows if row.get("verified")]
     firsts = [row["first"] for row in verified if row.get("first") is not None]
+    median = f"{statistics.median(firsts):.2f}" if firsts else "-"
+    worst = f"{max(firsts):.2f}" if firsts else "-"
+    return f"verified {len(verified)}/{len(rows)}; first layout median {median} s, max {worst} s"
+
+
+def summary(rows: list[dict]) -> str:
+    verified = [row for row in rows if row.get("verified")]
     area_ok = sum(meets(row)[0] for row in verified)
     fill_ok = sum(meets(row)[1] for row in verified)
     diff_ok = sum((row.get("difference") or 0) >= 0.3 for row in verified)
-    median = f"{statistics.median(firsts):.2f}" if firsts else "-"
-    worst = f"{max(firsts):.2f}" if firsts else "-"
-    return (f"verified {len(verified)}/{len(rows)}; first layout median {median} s, max {worst} s; "
-            f"difference >= 0.3: {diff_ok}; area within +-15 %: {area_ok}; "
+    return (f"{first_layouts(rows)}; difference >= 0.3: {diff_ok}; area within +-15 %: {area_ok}; "
             f"fill >= 0.8 x original: {fill_ok}")
-
-
-def seed_summary(plan: str, rows: list[dict]) -> str:
-    """One plan over its seeds: how many verified, median and max first layout."""
-    firsts = sorted(row["first"] for row in rows if row.get("verified") and row.get("first") is not None)
-    verified = sum(bool(row.get("verified")) for row in rows)
-    if not firsts:
-        return f"  {plan}: verified 0/{len(rows)}"
-    return (f"  {plan}: verified {verified}/{len(rows)}; first layout median "
-            f"{statistics.median(firsts):.2f} s, max {firsts[-1]:.2f} s")
 
 
 THROUGHPUT_VARIANTS = 25
@@ -349,7 +345,7 @@ def main(argv: list[str] | None = None) -> int:
                 emit(json.dumps(row) if args.json else format_row(row))
             rows += plan_rows
             if args.seeds > 1 and not args.json:
-                emit(seed_summary(path.stem, plan_rows))
+                emit(f"  {path.stem}: {first_layouts(plan_rows)}")
         if not args.json:
             emit(summary(rows))
     if args.out:
