@@ -32,11 +32,14 @@ cycles it was built for, where a run ends depends mostly on its seed (office_Off
 runs: 1.7 m to 26.7 m after ~10 s). Started from a greedy placement the construction's repair
 gave up on, a short cool run untangles it far more often (FROM_GEOMETRY_TEMPERATURE). So
 `compile` anneals every plan with cycles beside its greedy placement
-(layoutdsl.compile.construct._Annealing): `AnnealingRuns` runs on the cores the repairs
-leave, and a run that ends within a few metres of a layout is repaired next. That constructs
+(layoutdsl.compile.construct._Annealing): runs go on the cores the repairs leave
+(layoutdsl.compile.anneal_runs), and a run that ends within a few metres of a layout is
+repaired next. That constructs
 office_OfficePlan at seeds 0-3 and school_RomainRolland1 in ~5 s (38 s greedy alone);
 office_floor-1024x523 at three of seeds 0-3 (18-32 s, each from a random start that met
-every door), school_stjoseph_scatholichighschool not yet.
+every door), school_stjoseph_scatholichighschool not at all: its runs ended 5-90 m from a
+layout. The core-and-satellites annealer (layoutdsl.compile.satellites), which packs only the
+rooms in its large cycle blocks as a sequence pair, constructs it; compile runs both kinds.
 
 The number of moves is fixed by the spec's size, never by the clock, and each chain is
 seeded: the same seed gives the same geometry. Needs numba (`pip install
@@ -235,7 +238,14 @@ def anneal_geometry(spec: Spec, seed: int,
     rooms touch along at least the door's wall. The deadline only ever cuts a run off, it
     never shortens one: a geometry returned is the same with or without it.
     """
-    arrays = _Arrays.of(spec)
+    return best_of_chains(_Arrays.of(spec), seed, deadline)
+
+
+def best_of_chains(kernel, seed: int,
+                   deadline: float | None = None) -> tuple[dict[str, Rect], float] | None:
+    """(geometry, violation) of the best of CHAINS runs of `kernel` side by side, or None when
+    `deadline` came first. `kernel` is an annealer's spec as its runs read it: `_Arrays`, or
+    layoutdsl.compile.satellites.Satellites (chain(kernel_seed, cancel), geometry(result))."""
     # the numba generator is seeded inside each chain; draw their seeds from the spec's seed
     # through Python's generator so nearby seeds start far apart
     draw = random.Random(seed)
@@ -247,117 +257,13 @@ def anneal_geometry(spec: Spec, seed: int,
     # does not depend on which thread finishes first
     try:
         with ThreadPoolExecutor(max_workers=CHAINS) as pool:
-            results = list(pool.map(lambda kernel_seed: arrays.chain(kernel_seed, cancel), kernel_seeds))
+            results = list(pool.map(lambda kernel_seed: kernel.chain(kernel_seed, cancel), kernel_seeds))
     finally:
         if timer is not None:
             timer.cancel()
     if cancel[0]:
         return None
-    return arrays.geometry(min(results, key=lambda result: result[5]))
-
-
-class AnnealingRuns:
-    """Annealing runs of one spec on worker threads of their own, while the caller does other
-    work (the construction repairs its greedy geometries meanwhile).
-
-    `submit(geometry)` asks for a run from that geometry; runs asked for go first. A worker
-    with nothing asked for runs one from a random sequence pair, but at most one worker at a
-    time does. Each run is one chain, seeded with the next draw from `seed` (the runs asked
-    for and the random ones from two streams, so a run's seed does not depend on when a
-    worker fell idle). `pop_done` gives the finished run nearest a layout. Runs still
-    going at `deadline` or at `close()` are cut off and give nothing.
-    """
-
-    def __init__(self, spec: Spec, seed: int, deadline: float | None, workers: int = CHAINS):
-        self.arrays = _Arrays.of(spec)
-        self.draw = random.Random(seed)
-        self.random_draw = random.Random(seed + 1)
-        self.cancel = np.zeros(1, dtype=np.int64)
-        self.timer = _cancel_at(deadline, self.cancel)
-        self.condition = threading.Condition()
-        self.asked: list[tuple[int, dict[str, Rect]]] = []
-        self.done: list[tuple[dict[str, Rect], float, bool]] = []
-        self.random_busy = False
-        self.threads = [threading.Thread(target=self._work, name="layoutdsl-anneal", daemon=True)
-                        for _ in range(workers)]
-        for thread in self.threads:
-            thread.start()
-
-    def submit(self, geometry: dict[str, Rect]) -> None:
-        """Ask for a run from `geometry` (the spec's rooms, overlaps allowed)."""
-        with self.condition:
-            self.asked.append((self.draw.randrange(2**31), geometry))
-            self.condition.notify_all()
-
-    def _next_job(self):
-        """(kernel seed, start or None) for a free worker, or None to stop; holds the lock."""
-        while not self.cancel[0]:
-            if self.asked:
-                return self.asked.pop(0)
-            if not self.random_busy:
-                self.random_busy = True
-                return self.random_draw.randrange(2**31), None
-            self.condition.wait(0.1)
-        return None
-
-    def _work(self) -> None:
-        while True:
-            with self.condition:
-                job = self._next_job()
-                if job is None:
-                    return
-            kernel_seed, start = job
-            result = self.arrays.chain(kernel_seed, self.cancel, start)
-            # a chain cut off returns its best state so far, which depends on the clock
-            finished = None if self.cancel[0] else self.arrays.geometry(result)
-            with self.condition:
-                if start is None:
-                    self.random_busy = False
-                if finished is not None:
-                    self.done.append((*finished, start is not None))
-                self.condition.notify_all()
-
-    def pop_done(self, fit=lambda violation: True) -> tuple[dict[str, Rect], float, bool] | None:
-        """The finished run with the least violation among those that are `fit` (the first
-        finished on a tie), dropping the unfit ones: (geometry, violation, whether it
-        started from a given geometry), or None.
-
-        The least, not the first: runs finish while a repair holds the construction, and
-        measured on school_stjoseph_scatholichighschool's 27-room block, packings that met
-        every door waited 18 s behind earlier ones 2-5 m from a layout whose repairs stalled.
-        """
-        with self.condition:
-            self.done = [run for run in self.done if fit(run[1])]
-            if not self.done:
-                return None
-            best = min(range(len(self.done)), key=lambda k: self.done[k][1])
-            return self.done.pop(best)
-
-    def has_done(self, fit=lambda violation: True) -> bool:
-        """Whether a finished run's violation is `fit`."""
-        with self.condition:
-            return any(fit(run[1]) for run in self.done)
-
-    def wait(self, fit, deadline: float) -> tuple[dict[str, Rect], float, bool] | None:
-        """pop_done(fit), waiting for runs to finish until `deadline`."""
-        while time.monotonic() < deadline and not self.cancel[0]:
-            run = self.pop_done(fit)
-            if run is not None:
-                return run
-            with self.condition:
-                if not self.done:
-                    self.condition.wait(min(0.5, max(0.0, deadline - time.monotonic())))
-        return None
-
-    def close(self) -> None:
-        """Cut off the runs going (within CANCEL_CHECK moves) and wait for their threads."""
-        self.cancel.fill(1)
-        if self.timer is not None:
-            self.timer.cancel()
-        with self.condition:
-            self.condition.notify_all()
-        for thread in self.threads:
-            thread.join()
+    return min((kernel.geometry(result) for result in results), key=lambda found: found[1])
 
 
 def _bounds(sizes: RoomSizes) -> tuple[float, ...]:
@@ -630,6 +536,90 @@ def _move_beside(seq, room, anchor, after, out):
             k += 1
 
 
+@njit(cache=True)
+def _resize_into(i, long_side, short_side, bounds, new_long, new_short):
+    """One side of room i longer or shorter (into new_long or new_short, copies of the
+    sides), within its bounds and aspect ratio."""
+    factor = math.exp(RESIZE_STEP * np.random.standard_normal())
+    lo_long, hi_long, lo_short, hi_short, min_ar, max_ar = bounds[i]
+    if np.random.random() < 0.5:
+        lo = max(lo_long, min_ar * short_side[i], short_side[i])
+        hi = min(hi_long, max_ar * short_side[i])
+        new_long[i] = min(hi, max(lo, long_side[i] * factor))
+    else:
+        lo = max(lo_short, long_side[i] / max_ar)
+        hi = min(hi_short, long_side[i] / min_ar, long_side[i])
+        new_short[i] = min(hi, max(lo, short_side[i] * factor))
+
+
+@njit(cache=True, inline="always")
+def _drift(i, long_side, short_side, drawn_long, drawn_short):
+    """How far room i's sides are from their drawn lengths (RESIZE_WEIGHT), in metres."""
+    return abs(long_side[i] - drawn_long[i]) + abs(short_side[i] - drawn_short[i])
+
+
+@njit(cache=True)
+def _propose(p, q, turned, long_side, short_side, new_p, new_q, new_turned, spare_long, spare_short,
+             bounds, edge_a, edge_b, per_edge):
+    """One random move of a sequence-pair state, into new_p, new_q, new_turned (copies of p,
+    q, turned on entry) or, for a resize, into spare_long and spare_short: the resized room,
+    or -1 for any other move. per_edge (each door's violation) steers the move beside a
+    neighbour towards unmet doors."""
+    n = p.shape[0]
+    m = edge_a.shape[0]
+    kind = np.random.random()
+    if kind < RESIZE_SHARE:
+        # one side of one room longer or shorter, within its bounds and aspect ratio
+        i = np.random.randint(n)
+        spare_long[:] = long_side
+        spare_short[:] = short_side
+        _resize_into(i, long_side, short_side, bounds, spare_long, spare_short)
+        return i
+    if kind < RESIZE_SHARE + 0.3 and m > 0:
+        # a door's room beside its neighbour, on a random side; unmet doors first
+        k = np.random.randint(m)
+        for _ in range(8):
+            if per_edge[k] > 0.0:
+                break
+            k = np.random.randint(m)
+        a = edge_a[k]
+        b = edge_b[k]
+        if np.random.random() < 0.5:
+            a, b = b, a
+        side = np.random.randint(4)
+        # b right of a: after in both; left: before in both;
+        # above: before in P, after in Q; below: after in P, before in Q
+        _move_beside(p, b, a, side == 0 or side == 3, new_p)
+        _move_beside(q, b, a, side == 0 or side == 2, new_q)
+        if np.random.random() < 0.3:
+            new_turned[b] = not new_turned[b]
+    elif kind < 0.55:
+        i = np.random.randint(n)
+        j = np.random.randint(n)
+        new_p[i], new_p[j] = new_p[j], new_p[i]
+    elif kind < 0.65:
+        i = np.random.randint(n)
+        j = np.random.randint(n)
+        new_q[i], new_q[j] = new_q[j], new_q[i]
+    elif kind < 0.85:
+        # two rooms trade places: swap them in both sequences
+        a = np.random.randint(n)
+        b = np.random.randint(n)
+        for k in range(n):
+            if new_p[k] == a:
+                new_p[k] = b
+            elif new_p[k] == b:
+                new_p[k] = a
+            if new_q[k] == a:
+                new_q[k] = b
+            elif new_q[k] == b:
+                new_q[k] = a
+    else:
+        i = np.random.randint(n)
+        new_turned[i] = not new_turned[i]
+    return -1
+
+
 @njit(cache=True, nogil=True)
 def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, door_to, on_boundary,
             width, height, wall, seed, moves, t_start, t_end, give_up_step, give_up_m, cancel,
@@ -675,69 +665,14 @@ def _anneal(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, doo
         new_long = long_side
         new_short = short_side
         new_resized = resized
-        kind = np.random.random()
-        resizing = kind < RESIZE_SHARE
+        resized_room = _propose(p, q, turned, long_side, short_side, new_p, new_q, new_turned, spare_long,
+                                spare_short, bounds, edge_a, edge_b, per_edge)
+        resizing = resized_room >= 0
         if resizing:
-            # one side of one room longer or shorter, within its bounds and aspect ratio
-            i = np.random.randint(n)
             new_long = spare_long
             new_short = spare_short
-            new_long[:] = long_side
-            new_short[:] = short_side
-            factor = math.exp(RESIZE_STEP * np.random.standard_normal())
-            lo_long, hi_long, lo_short, hi_short, min_ar, max_ar = bounds[i]
-            if np.random.random() < 0.5:
-                lo = max(lo_long, min_ar * short_side[i], short_side[i])
-                hi = min(hi_long, max_ar * short_side[i])
-                new_long[i] = min(hi, max(lo, long_side[i] * factor))
-            else:
-                lo = max(lo_short, long_side[i] / max_ar)
-                hi = min(hi_short, long_side[i] / min_ar, long_side[i])
-                new_short[i] = min(hi, max(lo, short_side[i] * factor))
-            new_resized = resized - (abs(long_side[i] - drawn_long[i]) + abs(short_side[i] - drawn_short[i])) \
-                + (abs(new_long[i] - drawn_long[i]) + abs(new_short[i] - drawn_short[i]))
-        elif kind < RESIZE_SHARE + 0.3 and m > 0:
-            # a door's room beside its neighbour, on a random side; unmet doors first
-            k = np.random.randint(m)
-            for _ in range(8):
-                if per_edge[k] > 0.0:
-                    break
-                k = np.random.randint(m)
-            a = edge_a[k]
-            b = edge_b[k]
-            if np.random.random() < 0.5:
-                a, b = b, a
-            side = np.random.randint(4)
-            # b right of a: after in both; left: before in both;
-            # above: before in P, after in Q; below: after in P, before in Q
-            _move_beside(p, b, a, side == 0 or side == 3, new_p)
-            _move_beside(q, b, a, side == 0 or side == 2, new_q)
-            if np.random.random() < 0.3:
-                new_turned[b] = not new_turned[b]
-        elif kind < 0.55:
-            i = np.random.randint(n)
-            j = np.random.randint(n)
-            new_p[i], new_p[j] = new_p[j], new_p[i]
-        elif kind < 0.65:
-            i = np.random.randint(n)
-            j = np.random.randint(n)
-            new_q[i], new_q[j] = new_q[j], new_q[i]
-        elif kind < 0.85:
-            # two rooms trade places: swap them in both sequences
-            a = np.random.randint(n)
-            b = np.random.randint(n)
-            for k in range(n):
-                if new_p[k] == a:
-                    new_p[k] = b
-                elif new_p[k] == b:
-                    new_p[k] = a
-                if new_q[k] == a:
-                    new_q[k] = b
-                elif new_q[k] == b:
-                    new_q[k] = a
-        else:
-            i = np.random.randint(n)
-            new_turned[i] = not new_turned[i]
+            new_resized = resized - _drift(resized_room, long_side, short_side, drawn_long, drawn_short) \
+                + _drift(resized_room, new_long, new_short, drawn_long, drawn_short)
         new_violation, box = _evaluate(new_p, new_q, new_turned, new_long, new_short, bounds, edge_a,
                                        edge_b, need, door_ptr, door_to, on_boundary, width, height, wall,
                                        trial_edge, work)

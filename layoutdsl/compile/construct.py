@@ -1543,7 +1543,7 @@ class _Annealing:
     construct school_RomainRolland1 in 4 s where the greedy ones take 38 s, while the greedy
     ones construct office_floorplanLOWER and the annealed ones do not. So both run. Every
     greedy geometry the repair gives up on is annealed (`anneal_from`), and a worker with
-    nothing to do anneals from a random sequence pair (layoutdsl.compile.anneal.AnnealingRuns).
+    nothing to do anneals from scratch (layoutdsl.compile.anneal_runs.AnnealingRuns).
 
     The annealing starts at once, on two workers, for the plans the greedy placement alone
     has never constructed ("first"); for the others ("beside"), on one worker, after
@@ -1564,10 +1564,10 @@ class _Annealing:
     def start(self) -> None:
         with self.lock:
             if self.runs is None and not self.closed:
-                from layoutdsl.compile.anneal import AnnealingRuns
+                from layoutdsl.compile.anneal_runs import AnnealingRuns
 
                 self.runs = AnnealingRuns(self.spec, self.seed, self.deadline,
-                                          workers=2 if self.order == "first" else 1)
+                                          workers=2 if self.order == "first" else 1, log=_debug)
 
     def anneal_from(self, geometry: dict[str, Rect]) -> None:
         """Anneal from a seed geometry (of the drawn spec) the repair gave up on."""

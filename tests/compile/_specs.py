@@ -56,3 +56,15 @@ def ladder_spec() -> Spec:
     adjacencies = [adjacent(rail, f"K{i}", kind="i") for rail in "AB" for i in range(3)]
     adjacencies += [adjacent(f"K{i}", f"R{i}") for i in range(3)]
     return Spec("ladder", tuple(rooms), Boundary(30.0, 30.0), tuple(adjacencies))
+
+
+def ring_block_spec() -> Spec:
+    """A ring of twelve rooms (one block of CORE_BLOCK_ROOMS), a triangle of rooms beside it
+    (a small block), rooms hanging off both, and a room with no door at all."""
+    ring = [f"K{i}" for i in range(12)]
+    rooms = [room(name, 4.0, 4.0) for name in ring]
+    rooms += [room(name, 3.0, 3.0) for name in ("T1", "T2", "H1", "H2", "H3", "LONE")]
+    adjacencies = [adjacent(a, b) for a, b in zip(ring, ring[1:] + ring[:1])]
+    adjacencies += [adjacent("K0", "T1"), adjacent("T1", "T2"), adjacent("T2", "K0"),
+                    adjacent("K5", "H1"), adjacent("H1", "H2"), adjacent("T2", "H3")]
+    return Spec("ring-block", tuple(rooms), Boundary(40.0, 40.0), tuple(adjacencies))

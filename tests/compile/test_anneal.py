@@ -15,7 +15,8 @@ import numpy as np
 import pytest
 
 from layoutdsl.api import load_spec
-from layoutdsl.compile.anneal import AnnealingRuns, _door_lists, _pack, anneal_geometry
+from layoutdsl.compile.anneal import _door_lists, _pack, anneal_geometry
+from layoutdsl.compile.anneal_runs import AnnealingRuns
 from layoutdsl.compile.construct import annealable
 from layoutdsl.compile.generate import RoomSizes
 from layoutdsl.layout.verify import verify

@@ -1,0 +1,530 @@
+"""New arrangements by annealing the rooms in cycles only, with the rooms hanging off them
+placed beside their parents after every move (issue 11).
+
+The sequence-pair annealer (layoutdsl.compile.anneal) packs every room of a plan in one
+sequence pair. On school_stjoseph_scatholichighschool (105 rooms, 26 independent cycles) its
+runs ended 5-90 m from a layout, whatever was tried (bench/results/anneal-align.txt,
+anneal-stages.txt). Two things stood in the way, both measured there: rooms hanging off a
+corridor that the packing puts between two rooms that need a door (a room *in the way*), and
+a packed 2-core that leaves no free wall for the hanging rooms once they come back.
+
+Here the plan is split in two:
+
+- the *core*: the biconnected blocks of CORE_BLOCK_ROOMS rooms or more (else the whole
+  2-core), the part where the cycles must close. It is a sequence pair, moved and packed as
+  the sequence-pair annealer does (anneal._propose, anneal._evaluate);
+- the *satellites*: every other room, in breadth-first order from the core, each with the
+  room it hangs off (its parent). After each packing of the core they are placed one by one,
+  greedily, in free space beside their parent (_place_satellites): on one of its four sides,
+  centred, flush with either end, lined up with another door neighbour already placed, or
+  (when nothing of that is free) flush against a sibling. A satellite's other doors (it may
+  close a small cycle, as a classroom between a corridor and a closet does) add their gaps.
+
+So a satellite is never in the core's way, and the core is scored with its satellites: a
+move that closes a cycle but walls in a corridor's rooms costs what they lose. A satellite's
+side, place, turn and size are annealed too. The score is the sequence-pair annealer's
+violation for the core plus, for each satellite, its overlap with the rooms placed before
+it, its extent past the boundary and its doors' gaps (in metres); 0 is a geometry in which
+every door is met, no two rooms overlap and all lies inside the boundary.
+
+Measured (bench/results/satellites.txt, runs of SATELLITE_MAX_MOVES moves on 2 cores): on
+school_stjoseph_scatholichighschool, 3 runs of 8 end within 6 m of a layout (the repair's
+reach, construct.ANNEAL_REPAIR_M) and one at 0, against none of dozens of whole-plan runs; on
+office_floor-1024x523 6 of 8 (the sequence pair alone: 2 of 8). On office_OfficePlan, whose
+core is a ladder of corridors with many rooms along its rails, the sequence pair does
+better, so compile alternates the two kinds of random start (anneal_runs.AnnealingRuns).
+
+Every run is seeded and its number of moves fixed by the plan's size: the same seed gives
+the same geometry. Needs numba, as the sequence-pair annealer does.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import networkx as nx
+import numpy as np
+from numba import njit
+
+from layoutdsl.compile.anneal import (
+    CANCEL_CHECK,
+    COMPACT_WEIGHT,
+    END_TEMPERATURE,
+    RESIZE_WEIGHT,
+    START_TEMPERATURE,
+    _Arrays,
+    _bounds,
+    _drift,
+    _evaluate,
+    _new_work,
+    _propose,
+    _resize_into,
+    best_of_chains,
+)
+from layoutdsl.compile.generate import RoomSizes, drawn_sides, room_graph
+from layoutdsl.layout.geometry import Rect
+from layoutdsl.syntax.ast import Spec
+
+CORE_BLOCK_ROOMS = 12
+"""Biconnected blocks of this many rooms or more form the core; smaller blocks (a classroom
+and a closet beside a corridor, say) are placed as satellites, their cycle closed by the
+satellite's extra door. On school_stjoseph_scatholichighschool the core is then its 27-room
+block: with the whole 54-room 2-core as the core, two runs of 2M moves ended 16 m and 18 m
+from a layout, with the 27-room block 0.1 m and 1.9 m at 1M."""
+
+MOVES_PER_ROOM = 15000
+MAX_MOVES = 1_000_000
+"""Moves of a run: this many per room (core and satellites), at most MAX_MOVES. Measured on
+school_stjoseph_scatholichighschool (8 seeds): 500000 moves left every run over 7 m from a
+layout, 1000000 three of eight within 6 m (28 s a run on this machine); on
+office_floor-1024x523, 500000 did as well as 1000000."""
+
+SATELLITE_SHARE = 0.5
+"""Share of the moves that change a satellite (turn it, resize it, or move it to another
+side of its parent), times the satellites' share of the rooms."""
+
+GRID_CELL = 4.0
+GRID_CAPACITY = 96
+"""The placement looks for overlaps in a grid of cells this many metres square, each listing
+up to GRID_CAPACITY rooms (a fuller cell falls back to looking at every room)."""
+
+MAX_SLIDES = 3 + 2 * 64
+"""Places along a parent's side a satellite may take: middle and ends, then two for each door
+neighbour and each sibling placed before it (beyond 64 of those, the rest are not tried)."""
+
+
+@dataclass(frozen=True)
+class Satellites:
+    """A spec split into its core (annealed as a sequence pair) and satellites (placed)."""
+
+    core: _Arrays
+    ids: list[str]
+    """the core's rooms, then the satellites in placing order"""
+    parent: np.ndarray
+    """each satellite's parent, an index into ids"""
+    need: np.ndarray
+    """the wall each satellite must share with its parent (0: no door, beside it anyway)"""
+    long_side: np.ndarray
+    short_side: np.ndarray
+    bounds: np.ndarray
+    on_boundary: np.ndarray
+    """satellites that must touch the boundary (onB): their distance from it is scored"""
+    extra_ptr: np.ndarray
+    extra_to: np.ndarray
+    extra_need: np.ndarray
+    """each satellite's doors to rooms placed before it other than its parent, CSR-style"""
+    sibling_ptr: np.ndarray
+    sibling_to: np.ndarray
+    """each satellite's siblings placed before it, CSR-style"""
+
+    @classmethod
+    def of(cls, spec: Spec) -> Satellites | None:
+        """The split of `spec` (its L-rooms' arms drawn as rooms), or None when it has no
+        cycle (the greedy placement builds those) or no room outside its core."""
+        graph = room_graph(spec)
+        core: set[str] = set()
+        for block in nx.biconnected_components(graph):
+            if len(block) >= CORE_BLOCK_ROOMS:
+                core |= block
+        if not core:
+            core = set(nx.k_core(graph, 2))
+        if not core or len(core) == len(spec.rooms):
+            return None
+        core_arrays = _Arrays.of(spec.restricted_to(core, f"{spec.name}-core"))
+        ids = list(core_arrays.ids)
+        index = {room_id: i for i, room_id in enumerate(ids)}
+        utilization = spec.settings.door_utilization
+        needs = {frozenset((adj.a, adj.b)): adj.door / utilization for adj in spec.adjacencies}
+        parent: list[int] = []
+        need: list[float] = []
+        order: list[str] = []
+
+        def reach(frontier: list[str]) -> None:
+            # breadth first from `frontier`: each room's parent is the first placed neighbour
+            while frontier:
+                following = []
+                for room_id in frontier:
+                    for other in sorted(graph[room_id]):
+                        if other not in index:
+                            index[other] = len(ids) + len(order)
+                            order.append(other)
+                            parent.append(index[room_id])
+                            need.append(needs[frozenset((room_id, other))])
+                            following.append(other)
+                frontier = following
+
+        reach(list(ids))
+        for room in spec.rooms:
+            if room.id not in index:
+                # a part of the plan with no door to the core: its first room beside the
+                # core's first, without a door
+                index[room.id] = len(ids) + len(order)
+                order.append(room.id)
+                parent.append(0)
+                need.append(0.0)
+                reach([room.id])
+        extras = [[(index[other], needs[frozenset((room_id, other))]) for other in sorted(graph[room_id])
+                   if index[other] < len(ids) + k and index[other] != parent[k]]
+                  for k, room_id in enumerate(order)]
+        siblings = [[len(ids) + j for j in range(k) if parent[j] == parent[k]] for k in range(len(order))]
+        rooms = {room.id: room for room in spec.rooms}
+        sides = drawn_sides(spec)
+        extra_ptr, extra_to = _csr([[j for j, _ in row] for row in extras])
+        sibling_ptr, sibling_to = _csr(siblings)
+        return cls(
+            core=core_arrays,
+            ids=ids + order,
+            parent=np.array(parent, dtype=np.int64),
+            need=np.array(need, dtype=np.float64),
+            long_side=np.array([sides[r][0] for r in order], dtype=np.float64),
+            short_side=np.array([sides[r][1] for r in order], dtype=np.float64),
+            bounds=np.array([_bounds(RoomSizes.of(rooms[r])) for r in order], dtype=np.float64),
+            on_boundary=np.array([rooms[r].on_boundary for r in order], dtype=np.bool_),
+            extra_ptr=extra_ptr, extra_to=extra_to,
+            extra_need=np.array([n for row in extras for _, n in row], dtype=np.float64),
+            sibling_ptr=sibling_ptr, sibling_to=sibling_to)
+
+    def moves(self) -> int:
+        return min(MAX_MOVES, MOVES_PER_ROOM * len(self.ids))
+
+    def chain(self, kernel_seed: int, cancel: np.ndarray):
+        """One run from a random sequence pair of the core (the kernel releases the GIL),
+        cut off when cancel[0] is set; geometry() reads its result."""
+        core = self.core
+        scale = core.width + core.height
+        share = SATELLITE_SHARE * len(self.parent) / len(self.ids)
+        return _anneal_satellites(
+            core.long_side, core.short_side, core.bounds, core.edge_a, core.edge_b, core.need,
+            core.door_ptr, core.door_to, core.on_boundary, core.width, core.height, core.wall,
+            kernel_seed, self.moves(), START_TEMPERATURE * scale, END_TEMPERATURE * scale, cancel,
+            self.parent, self.need, self.long_side, self.short_side, self.bounds, self.on_boundary, self.extra_ptr,
+            self.extra_to, self.extra_need, self.sibling_ptr, self.sibling_to, share)
+
+    def geometry(self, result) -> tuple[dict[str, Rect], float]:
+        """The rectangles of a run's best state, and its violation."""
+        violation, x, y, w, h = result
+        return ({room_id: (float(x[i]), float(y[i]), float(w[i]), float(h[i]))
+                 for i, room_id in enumerate(self.ids)}, float(violation))
+
+
+def satellites_geometry(spec: Spec, seed: int,
+                        deadline: float | None = None) -> tuple[dict[str, Rect], float] | None:
+    """As layoutdsl.compile.anneal.anneal_geometry, with the core-and-satellites annealer (for
+    a spec it splits, Satellites.of)."""
+    satellites = Satellites.of(spec)
+    assert satellites is not None, "a spec without cycles, or all core: use anneal_geometry"
+    return best_of_chains(satellites, seed, deadline)
+
+
+def _csr(rows: list[list[int]]) -> tuple[np.ndarray, np.ndarray]:
+    ptr = np.zeros(len(rows) + 1, dtype=np.int64)
+    ptr[1:] = np.cumsum([len(row) for row in rows])
+    return ptr, np.array([j for row in rows for j in row], dtype=np.int64)
+
+
+@njit(cache=True, inline="always")
+def _door_gap(ax, ay, aw, ah, bx, by, bw, bh, need, wall):
+    """How far two rectangles are from sharing `need` metres of wall one wall apart: along the
+    nearer axis, the gap's distance from a wall plus the missing shared length."""
+    gap_x = max(bx - ax - aw, ax - bx - bw) - wall
+    gap_y = max(by - ay - ah, ay - by - bh) - wall
+    shared_y = min(ay + ah, by + bh) - max(ay, by)
+    shared_x = min(ax + aw, bx + bw) - max(ax, bx)
+    return min(abs(gap_x) + max(0.0, need - shared_y), abs(gap_y) + max(0.0, need - shared_x))
+
+
+@njit(cache=True, inline="always")
+def _cells(low, high, count):
+    first = min(max(int(math.floor(low / GRID_CELL)), 0), count - 1)
+    last = min(max(int(math.floor(high / GRID_CELL)), 0), count - 1)
+    return first, last
+
+
+@njit(cache=True)
+def _grid_add(grid, counts, k, x, y, w, h, wall, columns, rows):
+    """Room k into every cell its rectangle (a wall wider all round) touches."""
+    i0, i1 = _cells(x - wall, x + w + wall, columns)
+    j0, j1 = _cells(y - wall, y + h + wall, rows)
+    for j in range(j0, j1 + 1):
+        for i in range(i0, i1 + 1):
+            c = j * columns + i
+            if counts[c] < GRID_CAPACITY:
+                grid[c, counts[c]] = k
+            counts[c] += 1
+
+
+@njit(cache=True)
+def _crowding(cx, cy, w, h, x, y, rw, rh, placed, width, height, wall, stop, grid, counts, columns, rows,
+              stamp, token):
+    """A candidate rectangle's extent past the boundary plus, for each of the `placed` rooms
+    closer than a wall, the lesser of its two overlaps (a wall added): 0 is a free place.
+    Stops counting at `stop`."""
+    cost = max(0.0, -cx) + max(0.0, -cy) + max(0.0, cx + w - width) + max(0.0, cy + h - height)
+    if cost >= stop:
+        return cost
+    i0, i1 = _cells(cx, cx + w, columns)
+    j0, j1 = _cells(cy, cy + h, rows)
+    full = False
+    for j in range(j0, j1 + 1):
+        for i in range(i0, i1 + 1):
+            if counts[j * columns + i] > GRID_CAPACITY:
+                full = True
+    for j in range(j0, j1 + 1):
+        for i in range(i0, i1 + 1):
+            c = j * columns + i
+            listed = placed if full else counts[c]
+            for t in range(listed):
+                r = t if full else grid[c, t]
+                if stamp[r] == token:
+                    continue
+                stamp[r] = token
+                over_x = min(cx + w, x[r] + rw[r]) - max(cx, x[r]) + wall
+                if over_x <= 1e-9:
+                    continue
+                over_y = min(cy + h, y[r] + rh[r]) - max(cy, y[r]) + wall
+                if over_y <= 1e-9:
+                    continue
+                cost += min(over_x, over_y)
+                if cost >= stop:
+                    return cost
+            if full:
+                return cost
+    return cost
+
+
+@njit(cache=True)
+def _place_satellites(work, parent, need, on_boundary, long_side, short_side, turned, side_of, slide_of, extra_ptr,
+                      extra_to, extra_need, sibling_ptr, sibling_to, width, height, wall, x, y, w, h,
+                      grid, counts, stamp, budget):
+    """Place the satellites beside their parents, after the core's packing (work): into x, y,
+    w, h (core rooms first); each satellite's side and place into side_of, slide_of. Returns
+    the satellites' cost (overlap, overflow, doors' gaps), or as soon as it passes `budget`
+    (the move is then refused whatever the rest would cost) the cost so far.
+
+    A satellite first tries the side and place it had (in a settled plan most keep theirs),
+    then its sides from that one round, each at its middle, ends and lined up with its other
+    doors' rooms, then the same sides flush against its siblings; the first free place wins,
+    else the cheapest."""
+    nc = work.x.shape[0]
+    columns = int(width / GRID_CELL) + 1
+    rows = int(height / GRID_CELL) + 1
+    counts[:] = 0
+    for i in range(nc):
+        x[i] = work.x[i]
+        y[i] = work.y[i]
+        w[i] = work.w[i]
+        h[i] = work.h[i]
+        _grid_add(grid, counts, i, x[i], y[i], w[i], h[i], wall, columns, rows)
+    slides = np.empty(MAX_SLIDES)
+    total = 0.0
+    for s in range(parent.shape[0]):
+        k = nc + s
+        if turned[s]:
+            sw, sh = short_side[s], long_side[s]
+        else:
+            sw, sh = long_side[s], short_side[s]
+        p = parent[s]
+        px, py, pw, ph = x[p], y[p], w[p], h[p]
+        best, best_x, best_y = np.inf, 0.0, 0.0
+        best_side, best_slide = side_of[s], slide_of[s]
+        for t in range(-1, 8):
+            side = side_of[s] if t < 0 else (side_of[s] + t) % 4
+            along_y = side < 2  # right (0) or left (1) of the parent: it slides along y
+            low, span, size = (py, ph, sh) if along_y else (px, pw, sw)
+            slides[0] = low + span / 2 - size / 2
+            slides[1] = low
+            slides[2] = low + span - size
+            count = 3
+            for e in range(extra_ptr[s], extra_ptr[s + 1]):
+                if count + 2 > MAX_SLIDES:
+                    break
+                j = extra_to[e]
+                slides[count] = y[j] + h[j] + wall if along_y else x[j] + w[j] + wall
+                slides[count + 1] = y[j] - wall - sh if along_y else x[j] - wall - sw
+                count += 2
+            first = 0
+            if t >= 4:
+                first = count  # the second round: flush against the siblings only
+            if t < 0 or t >= 4:
+                for e in range(sibling_ptr[s], sibling_ptr[s + 1]):
+                    if count + 2 > MAX_SLIDES:
+                        break
+                    j = sibling_to[e]
+                    slides[count] = y[j] + h[j] + wall if along_y else x[j] + w[j] + wall
+                    slides[count + 1] = y[j] - wall - sh if along_y else x[j] - wall - sw
+                    count += 2
+            for u in range(first, count):
+                if t < 0 and u != slide_of[s] % count:
+                    continue
+                if along_y:
+                    cx = px + pw + wall if side == 0 else px - wall - sw
+                    cy = slides[u]
+                else:
+                    cy = py + ph + wall if side == 2 else py - wall - sh
+                    cx = slides[u]
+                cost = 0.0
+                if on_boundary[s]:
+                    # its distance from the nearest side (past one, the overflow counts)
+                    cost += max(0.0, min(min(cx, cy), min(width - cx - sw, height - cy - sh)))
+                if need[s] > 0.0:
+                    cost += _door_gap(cx, cy, sw, sh, px, py, pw, ph, need[s], wall)
+                for e in range(extra_ptr[s], extra_ptr[s + 1]):
+                    j = extra_to[e]
+                    cost += _door_gap(cx, cy, sw, sh, x[j], y[j], w[j], h[j], extra_need[e], wall)
+                if cost >= best:
+                    continue
+                stamp[0] += 1  # a fresh mark for the rooms this candidate looks at
+                cost += _crowding(cx, cy, sw, sh, x, y, w, h, k, width, height, wall, best - cost, grid, counts,
+                                  columns, rows, stamp[1:], stamp[0])
+                if cost < best:
+                    best, best_x, best_y, best_side, best_slide = cost, cx, cy, side, u
+                    if cost <= 1e-9:
+                        break
+            if best <= 1e-9:
+                break
+        side_of[s] = best_side
+        slide_of[s] = best_slide
+        x[k], y[k], w[k], h[k] = best_x, best_y, sw, sh
+        _grid_add(grid, counts, k, best_x, best_y, sw, sh, wall, columns, rows)
+        total += best
+        if total > budget:
+            return total
+    return total
+
+
+@njit(cache=True, nogil=True)
+def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, door_to, on_boundary,
+                       width, height, wall, seed, moves, t_start, t_end, cancel, parent, sat_need,
+                       sat_drawn_long, sat_drawn_short, sat_bounds, sat_on_boundary, extra_ptr, extra_to,
+                       extra_need,
+                       sibling_ptr, sibling_to, satellite_share):
+    np.random.seed(seed)
+    n = drawn_long.shape[0]
+    ns = parent.shape[0]
+    m = edge_a.shape[0]
+    # the state: the core's sequence pair and sides, each satellite's turn, sides and place
+    p = np.random.permutation(n)
+    q = np.random.permutation(n)
+    turned = np.random.random(n) < 0.5
+    long_side = drawn_long.copy()
+    short_side = drawn_short.copy()
+    s_turned = np.random.random(ns) < 0.5
+    s_side = np.random.randint(0, 4, ns)
+    s_slide = np.zeros(ns, dtype=np.int64)
+    s_long = sat_drawn_long.copy()
+    s_short = sat_drawn_short.copy()
+    # the trial state of a move, and the best state, in arrays made once
+    new_p, new_q, new_turned = p.copy(), q.copy(), turned.copy()
+    spare_long, spare_short = long_side.copy(), short_side.copy()
+    new_s_turned, new_s_side, new_s_slide = s_turned.copy(), s_side.copy(), s_slide.copy()
+    new_s_long, new_s_short = s_long.copy(), s_short.copy()
+    best_p, best_q, best_turned = p.copy(), q.copy(), turned.copy()
+    best_long, best_short = long_side.copy(), short_side.copy()
+    best_s_turned, best_s_side, best_s_slide = s_turned.copy(), s_side.copy(), s_slide.copy()
+    best_s_long, best_s_short = s_long.copy(), s_short.copy()
+    x, y, w, h = np.zeros(n + ns), np.zeros(n + ns), np.zeros(n + ns), np.zeros(n + ns)
+    grid = np.empty(((int(width / GRID_CELL) + 1) * (int(height / GRID_CELL) + 1), GRID_CAPACITY), dtype=np.int64)
+    counts = np.zeros(grid.shape[0], dtype=np.int64)
+    stamp = np.zeros(n + ns + 1, dtype=np.int64)
+    per_edge = np.zeros(m)
+    trial_edge = np.zeros(m)
+    work = _new_work(n)
+    violation, box = _evaluate(p, q, turned, long_side, short_side, bounds, edge_a, edge_b, need,
+                               door_ptr, door_to, on_boundary, width, height, wall, per_edge, work)
+    violation += _place_satellites(work, parent, sat_need, sat_on_boundary, s_long, s_short, s_turned, s_side,
+                                   s_slide, extra_ptr, extra_to, extra_need, sibling_ptr, sibling_to, width, height,
+                                   wall, x, y, w, h, grid, counts, stamp, np.inf)
+    boundary_area = width * height
+    cost = violation + COMPACT_WEIGHT * box / boundary_area
+    resized = 0.0
+    best_violation = violation
+    best_cost = cost
+    ratio = t_end / t_start
+    for step in range(moves):
+        if step % CANCEL_CHECK == 0 and cancel[0]:
+            break
+        if best_violation <= 1e-9 and step >= moves // 2:
+            break  # every door met: the rest would only make it more compact
+        temperature = t_start * ratio ** (step / moves)
+        new_p[:] = p
+        new_q[:] = q
+        new_turned[:] = turned
+        new_s_turned[:] = s_turned
+        new_s_side[:] = s_side
+        new_s_slide[:] = s_slide
+        new_s_long[:] = s_long
+        new_s_short[:] = s_short
+        new_long, new_short = long_side, short_side
+        new_resized = resized
+        resizing = False
+        if np.random.random() < satellite_share:
+            s = np.random.randint(ns)
+            kind = np.random.random()
+            if kind < 0.3:
+                new_s_turned[s] = not new_s_turned[s]
+            elif kind < 0.6:
+                _resize_into(s, s_long, s_short, sat_bounds, new_s_long, new_s_short)
+                new_resized = resized - _drift(s, s_long, s_short, sat_drawn_long, sat_drawn_short) \
+                    + _drift(s, new_s_long, new_s_short, sat_drawn_long, sat_drawn_short)
+            else:
+                new_s_side[s] = np.random.randint(4)
+                new_s_slide[s] = np.random.randint(3)
+        else:
+            resized_room = _propose(p, q, turned, long_side, short_side, new_p, new_q, new_turned, spare_long,
+                                    spare_short, bounds, edge_a, edge_b, per_edge)
+            resizing = resized_room >= 0
+            if resizing:
+                new_long, new_short = spare_long, spare_short
+                new_resized = resized - _drift(resized_room, long_side, short_side, drawn_long, drawn_short) \
+                    + _drift(resized_room, new_long, new_short, drawn_long, drawn_short)
+        # the move is taken iff its cost is at most `limit` (Metropolis, its draw made first):
+        # the satellites are placed only as long as that may still hold, which is most of the time
+        limit = cost - temperature * math.log(1.0 - np.random.random())
+        new_violation, box = _evaluate(new_p, new_q, new_turned, new_long, new_short, bounds, edge_a, edge_b,
+                                       need, door_ptr, door_to, on_boundary, width, height, wall, trial_edge, work)
+        new_cost = new_violation + COMPACT_WEIGHT * box / boundary_area + RESIZE_WEIGHT * new_resized
+        if new_cost > limit:
+            continue
+        placed = _place_satellites(work, parent, sat_need, sat_on_boundary, new_s_long, new_s_short, new_s_turned,
+                                   new_s_side, new_s_slide, extra_ptr, extra_to, extra_need, sibling_ptr,
+                                   sibling_to, width, height, wall, x, y, w, h, grid, counts, stamp,
+                                   limit - new_cost)
+        new_violation += placed
+        new_cost += placed
+        if new_cost > limit:
+            continue
+        p, new_p = new_p, p
+        q, new_q = new_q, q
+        turned, new_turned = new_turned, turned
+        if resizing:
+            long_side, spare_long = spare_long, long_side
+            short_side, spare_short = spare_short, short_side
+        s_turned, new_s_turned = new_s_turned, s_turned
+        s_side, new_s_side = new_s_side, s_side
+        s_slide, new_s_slide = new_s_slide, s_slide
+        s_long, new_s_long = new_s_long, s_long
+        s_short, new_s_short = new_s_short, s_short
+        cost, resized = new_cost, new_resized
+        per_edge[:] = trial_edge
+        if new_violation < best_violation - 1e-9 or (
+                abs(new_violation - best_violation) <= 1e-9 and new_cost < best_cost):
+            best_p[:] = p
+            best_q[:] = q
+            best_turned[:] = turned
+            best_long[:] = long_side
+            best_short[:] = short_side
+            best_s_turned[:] = s_turned
+            best_s_side[:] = s_side
+            best_s_slide[:] = s_slide
+            best_s_long[:] = s_long
+            best_s_short[:] = s_short
+            best_violation = new_violation
+            best_cost = new_cost
+    # the best state's rectangles: its satellites each take the place they were scored in
+    _evaluate(best_p, best_q, best_turned, best_long, best_short, bounds, edge_a, edge_b, need,
+              door_ptr, door_to, on_boundary, width, height, wall, per_edge, work)
+    _place_satellites(work, parent, sat_need, sat_on_boundary, best_s_long, best_s_short, best_s_turned,
+                      best_s_side, best_s_slide, extra_ptr, extra_to, extra_need, sibling_ptr, sibling_to, width,
+                      height, wall, x, y, w, h, grid, counts, stamp, np.inf)
+    return best_violation, x, y, w, h

@@ -1,0 +1,151 @@
+"""The core-and-satellites annealer: the split of a plan, the runs' geometry, their seeds.
+
+Geometry is checked here with plain arithmetic of its own, not with the annealer's score.
+"""
+
+from __future__ import annotations
+
+import itertools
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from layoutdsl.api import load_spec
+from layoutdsl.compile import construct
+from layoutdsl.compile.anneal_runs import RANDOM_KINDS, AnnealingRuns
+from layoutdsl.compile.generate import room_graph
+from layoutdsl.compile.satellites import Satellites
+from layoutdsl.layout.verify import verify
+
+from _specs import cycle_spec, ring_block_spec, tree_spec
+
+SPECS = Path(__file__).resolve().parents[2] / "specs"
+TOL = 1e-6
+
+
+def _school():
+    spec, _ = load_spec(str(SPECS / "school_cycle.lay"))
+    assert spec is not None
+    return spec
+
+
+def _run(spec, seed: int):
+    satellites = Satellites.of(spec)
+    return satellites.geometry(satellites.chain(seed, np.zeros(1, dtype=np.int64)))
+
+
+def _gaps(a, b):
+    """Gap along x and along y between two (x, y, w, h) rectangles (negative: overlap)."""
+    return (max(b[0] - a[0] - a[2], a[0] - b[0] - b[2]), max(b[1] - a[1] - a[3], a[1] - b[1] - b[3]))
+
+
+def _shared(a, b):
+    """Length of wall two rectangles share along x and along y (negative: none)."""
+    return (min(a[0] + a[2], b[0] + b[2]) - max(a[0], b[0]), min(a[1] + a[3], b[1] + b[3]) - max(a[1], b[1]))
+
+
+def test_the_core_is_the_large_blocks_and_every_other_room_hangs_off_one_placed_before():
+    spec = ring_block_spec()
+    satellites = Satellites.of(spec)
+    core = {f"K{i}" for i in range(12)}
+    assert set(satellites.core.ids) == core
+    graph = room_graph(spec)
+    hanging = satellites.ids[len(core):]
+    assert sorted(hanging) == ["H1", "H2", "H3", "LONE", "T1", "T2"]
+    for k, room_id in enumerate(hanging):
+        parent = satellites.parent[k]
+        assert parent < len(core) + k  # placed before it
+        if room_id == "LONE":
+            assert satellites.need[k] == 0.0  # no door: only put beside a room
+        else:
+            assert graph.has_edge(room_id, satellites.ids[parent])
+            assert satellites.need[k] == pytest.approx(0.9 / spec.settings.door_utilization)
+    # the triangle's second room hangs off K0 and has a door to the first too: the small
+    # block's cycle closes as it is placed
+    t2 = hanging.index("T2")
+    assert satellites.ids[satellites.parent[t2]] == "K0"
+    extras = satellites.extra_to[satellites.extra_ptr[t2]:satellites.extra_ptr[t2 + 1]]
+    assert [satellites.ids[j] for j in extras] == ["T1"]
+
+
+def test_without_a_large_block_the_core_is_the_2_core_and_a_tree_is_not_split():
+    satellites = Satellites.of(cycle_spec())
+    assert set(satellites.core.ids) == {"A", "B", "C", "D", "E"}
+    assert sorted(satellites.ids[5:]) == ["F", "G"]
+    assert Satellites.of(tree_spec()) is None
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_a_run_that_meets_every_door_is_rooms_a_wall_apart_with_every_door_met(seed):
+    """school_cycle: a ring of corridors (the core) with classrooms, an entrance on the
+    boundary and three more rooms hanging off it (the satellites)."""
+    spec = _school()
+    geometry, violation = _run(spec, seed)
+    assert violation <= 1e-9
+    assert set(geometry) == {room.id for room in spec.rooms}
+    wall = spec.settings.walldim
+    for a, b in itertools.combinations(geometry.values(), 2):
+        assert max(_gaps(a, b)) >= wall - TOL
+    boundary = spec.boundary
+    for room in spec.rooms:
+        x, y, w, h = geometry[room.id]
+        assert x >= -TOL and y >= -TOL and x + w <= boundary.w + TOL and y + h <= boundary.h + TOL
+        if room.on_boundary:
+            assert min(x, y, boundary.w - x - w, boundary.h - y - h) <= TOL
+    for adj in spec.adjacencies:
+        a, b = geometry[adj.a], geometry[adj.b]
+        gap_x, gap_y = _gaps(a, b)
+        along_y, along_x = _shared(a, b)[1], _shared(a, b)[0]
+        need = adj.door / spec.settings.door_utilization
+        assert (abs(gap_x - wall) <= TOL and along_y >= need - TOL) or \
+            (abs(gap_y - wall) <= TOL and along_x >= need - TOL), (adj.a, adj.b)
+
+
+def test_the_same_seed_gives_the_same_geometry_and_another_seed_another():
+    spec = _school()
+    first, _ = _run(spec, 5)
+    again, _ = _run(spec, 5)
+    other, _ = _run(spec, 6)
+    assert first == again
+    assert first != other
+
+
+def test_a_cancelled_run_stops_at_once():
+    satellites = Satellites.of(_school())
+    geometry, violation = satellites.geometry(satellites.chain(0, np.ones(1, dtype=np.int64)))
+    assert len(geometry) == len(satellites.ids) and violation > 0.0  # a random start, unmoved
+
+
+def test_a_satellites_geometry_repairs_into_a_verified_layout():
+    spec = _school()
+    geometry, violation = _run(spec, 0)
+    assert violation <= 1e-9
+    problem = construct._Problem.of(spec)
+    rects = construct._repair(problem, geometry, time.monotonic() + 30, seed=0)
+    assert rects is not None
+    assert verify(spec, construct.rects_to_layout(spec, rects)) == []
+
+
+def test_runs_from_scratch_take_turns_between_the_kinds_with_runs_asked_for_first():
+    spec = _school()
+    runs = AnnealingRuns(spec, seed=0, deadline=None, workers=0)
+    try:
+        with runs.condition:
+            first, second = runs._next_job(), runs._next_job()
+            assert [first[2], second[2]] == list(RANDOM_KINDS) and first[1] is None and second[1] is None
+            runs.random_busy.discard(first[2])
+            runs.asked.append((7, {"C0": (0.0, 0.0, 1.0, 1.0)}))  # the lock is held
+            asked = runs._next_job()
+            assert asked == (7, {"C0": (0.0, 0.0, 1.0, 1.0)}, "sequence pair")
+            third = runs._next_job()
+            assert third[2] == RANDOM_KINDS[0]
+    finally:
+        runs.close()
+    # a spec the satellites do not split runs the sequence pair only
+    runs = AnnealingRuns(tree_spec(), seed=0, deadline=None, workers=0)
+    try:
+        assert runs.kinds == ("sequence pair",)
+    finally:
+        runs.close()
