@@ -295,12 +295,16 @@ def _crowding(cx, cy, w, h, x, y, rw, rh, placed, width, height, wall, stop, gri
 
 @njit(cache=True)
 def _place_satellites(work, parent, need, on_boundary, long_side, short_side, turned, side_of, slide_of, extra_ptr,
-                      extra_to, extra_need, sibling_ptr, sibling_to, width, height, wall, x, y, w, h,
-                      grid, counts, stamp, budget):
+                      extra_to, extra_need, sibling_ptr, sibling_to, width, height, wall, x, y, w, h, cost_of,
+                      grid, counts, stamp, budget, first, placed):
     """Place the satellites beside their parents, after the core's packing (work): into x, y,
-    w, h (core rooms first); each satellite's side and place into side_of, slide_of. Returns
-    the satellites' cost (overlap, overflow, doors' gaps), or as soon as it passes `budget`
-    (the move is then refused whatever the rest would cost) the cost so far.
+    w, h (core rooms first) and cost_of; each satellite's side and place into side_of,
+    slide_of. Returns the satellites' cost (overlap, overflow, doors' gaps), or as soon as it
+    passes `budget` (the move is then refused whatever the rest would cost) the cost so far.
+
+    From satellite `first` on: the core and the satellites before it are where `placed` (x, y,
+    w, h, cost_of of the state moved from) has them. A move of one satellite changes nothing
+    before it, so only it and those after it are placed again.
 
     A satellite first tries the side and place it had (in a settled plan most keep theirs),
     then its sides from that one round, each at its middle, ends and lined up with its other
@@ -310,15 +314,27 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
     columns = int(width / GRID_CELL) + 1
     rows = int(height / GRID_CELL) + 1
     counts[:] = 0
-    for i in range(nc):
-        x[i] = work.x[i]
-        y[i] = work.y[i]
-        w[i] = work.w[i]
-        h[i] = work.h[i]
+    total = 0.0
+    if first == 0:
+        for i in range(nc):
+            x[i] = work.x[i]
+            y[i] = work.y[i]
+            w[i] = work.w[i]
+            h[i] = work.h[i]
+    else:
+        placed_x, placed_y, placed_w, placed_h, placed_cost = placed
+        for i in range(nc + first):
+            x[i] = placed_x[i]
+            y[i] = placed_y[i]
+            w[i] = placed_w[i]
+            h[i] = placed_h[i]
+        for s in range(first):
+            cost_of[s] = placed_cost[s]
+            total += placed_cost[s]
+    for i in range(nc + first):
         _grid_add(grid, counts, i, x[i], y[i], w[i], h[i], wall, columns, rows)
     slides = np.empty(MAX_SLIDES)
-    total = 0.0
-    for s in range(parent.shape[0]):
+    for s in range(first, parent.shape[0]):
         k = nc + s
         if turned[s]:
             sw, sh = short_side[s], long_side[s]
@@ -343,9 +359,9 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
                 slides[count] = y[j] + h[j] + wall if along_y else x[j] + w[j] + wall
                 slides[count + 1] = y[j] - wall - sh if along_y else x[j] - wall - sw
                 count += 2
-            first = 0
+            from_slide = 0
             if t >= 4:
-                first = count  # the second round: flush against the siblings only
+                from_slide = count  # the second round: flush against the siblings only
             if t < 0 or t >= 4:
                 for e in range(sibling_ptr[s], sibling_ptr[s + 1]):
                     if count + 2 > MAX_SLIDES:
@@ -354,7 +370,7 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
                     slides[count] = y[j] + h[j] + wall if along_y else x[j] + w[j] + wall
                     slides[count + 1] = y[j] - wall - sh if along_y else x[j] - wall - sw
                     count += 2
-            for u in range(first, count):
+            for u in range(from_slide, count):
                 if t < 0 and u != slide_of[s] % count:
                     continue
                 if along_y:
@@ -387,6 +403,7 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
         slide_of[s] = best_slide
         x[k], y[k], w[k], h[k] = best_x, best_y, sw, sh
         _grid_add(grid, counts, k, best_x, best_y, sw, sh, wall, columns, rows)
+        cost_of[s] = best
         total += best
         if total > budget:
             return total
@@ -423,7 +440,10 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
     best_long, best_short = long_side.copy(), short_side.copy()
     best_s_turned, best_s_side, best_s_slide = s_turned.copy(), s_side.copy(), s_slide.copy()
     best_s_long, best_s_short = s_long.copy(), s_short.copy()
+    # where the state's rooms are and what each satellite costs (placed), and a move's (x, y, w, h, cost_of)
     x, y, w, h = np.zeros(n + ns), np.zeros(n + ns), np.zeros(n + ns), np.zeros(n + ns)
+    cost_of = np.zeros(ns)
+    placed = (np.zeros(n + ns), np.zeros(n + ns), np.zeros(n + ns), np.zeros(n + ns), np.zeros(ns))
     grid = np.empty(((int(width / GRID_CELL) + 1) * (int(height / GRID_CELL) + 1), GRID_CAPACITY), dtype=np.int64)
     counts = np.zeros(grid.shape[0], dtype=np.int64)
     stamp = np.zeros(n + ns + 1, dtype=np.int64)
@@ -432,9 +452,11 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
     work = _new_work(n)
     violation, box = _evaluate(p, q, turned, long_side, short_side, bounds, edge_a, edge_b, need,
                                door_ptr, door_to, on_boundary, width, height, wall, per_edge, work)
+    core_violation, core_box = violation, box
     violation += _place_satellites(work, parent, sat_need, sat_on_boundary, s_long, s_short, s_turned, s_side,
                                    s_slide, extra_ptr, extra_to, extra_need, sibling_ptr, sibling_to, width, height,
-                                   wall, x, y, w, h, grid, counts, stamp, np.inf)
+                                   wall, x, y, w, h, cost_of, grid, counts, stamp, np.inf, 0, placed)
+    x, y, w, h, cost_of, placed = placed[0], placed[1], placed[2], placed[3], placed[4], (x, y, w, h, cost_of)
     boundary_area = width * height
     cost = violation + COMPACT_WEIGHT * box / boundary_area
     resized = 0.0
@@ -458,8 +480,10 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
         new_long, new_short = long_side, short_side
         new_resized = resized
         resizing = False
+        first = 0
         if np.random.random() < satellite_share:
             s = np.random.randint(ns)
+            first = s
             kind = np.random.random()
             if kind < 0.3:
                 new_s_turned[s] = not new_s_turned[s]
@@ -481,19 +505,25 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
         # the move is taken iff its cost is at most `limit` (Metropolis, its draw made first):
         # the satellites are placed only as long as that may still hold, which is most of the time
         limit = cost - temperature * math.log(1.0 - np.random.random())
-        new_violation, box = _evaluate(new_p, new_q, new_turned, new_long, new_short, bounds, edge_a, edge_b,
-                                       need, door_ptr, door_to, on_boundary, width, height, wall, trial_edge, work)
-        new_cost = new_violation + COMPACT_WEIGHT * box / boundary_area + RESIZE_WEIGHT * new_resized
+        core_moved = first == 0
+        if core_moved:
+            new_core, box = _evaluate(new_p, new_q, new_turned, new_long, new_short, bounds, edge_a, edge_b,
+                                      need, door_ptr, door_to, on_boundary, width, height, wall, trial_edge, work)
+        else:
+            new_core, box = core_violation, core_box  # the core is as it was
+        new_cost = new_core + COMPACT_WEIGHT * box / boundary_area + RESIZE_WEIGHT * new_resized
         if new_cost > limit:
             continue
-        placed = _place_satellites(work, parent, sat_need, sat_on_boundary, new_s_long, new_s_short, new_s_turned,
-                                   new_s_side, new_s_slide, extra_ptr, extra_to, extra_need, sibling_ptr,
-                                   sibling_to, width, height, wall, x, y, w, h, grid, counts, stamp,
-                                   limit - new_cost)
-        new_violation += placed
-        new_cost += placed
+        satellites_cost = _place_satellites(work, parent, sat_need, sat_on_boundary, new_s_long, new_s_short,
+                                            new_s_turned, new_s_side, new_s_slide, extra_ptr, extra_to, extra_need,
+                                            sibling_ptr, sibling_to, width, height, wall, x, y, w, h, cost_of, grid,
+                                            counts, stamp, limit - new_cost, first, placed)
+        new_violation = new_core + satellites_cost
+        new_cost += satellites_cost
         if new_cost > limit:
             continue
+        x, y, w, h, cost_of, placed = placed[0], placed[1], placed[2], placed[3], placed[4], (x, y, w, h, cost_of)
+        core_violation, core_box = new_core, box
         p, new_p = new_p, p
         q, new_q = new_q, q
         turned, new_turned = new_turned, turned
@@ -506,7 +536,8 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
         s_long, new_s_long = new_s_long, s_long
         s_short, new_s_short = new_s_short, s_short
         cost, resized = new_cost, new_resized
-        per_edge[:] = trial_edge
+        if core_moved:
+            per_edge[:] = trial_edge
         if new_violation < best_violation - 1e-9 or (
                 abs(new_violation - best_violation) <= 1e-9 and new_cost < best_cost):
             best_p[:] = p
@@ -526,5 +557,5 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
               door_ptr, door_to, on_boundary, width, height, wall, per_edge, work)
     _place_satellites(work, parent, sat_need, sat_on_boundary, best_s_long, best_s_short, best_s_turned,
                       best_s_side, best_s_slide, extra_ptr, extra_to, extra_need, sibling_ptr, sibling_to, width,
-                      height, wall, x, y, w, h, grid, counts, stamp, np.inf)
+                      height, wall, x, y, w, h, cost_of, grid, counts, stamp, np.inf, 0, placed)
     return best_violation, x, y, w, h
