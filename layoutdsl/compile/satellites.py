@@ -73,16 +73,26 @@ satellite's extra door. On school_stjoseph_scatholichighschool the core is then 
 block: with the whole 54-room 2-core as the core, two runs of 2M moves ended 16 m and 18 m
 from a layout, with the 27-room block 0.1 m and 1.9 m at 1M."""
 
-MOVES_PER_ROOM = 15000
-MAX_MOVES = 1_000_000
-"""Moves of a run: this many per room (core and satellites), at most MAX_MOVES. Measured on
-school_stjoseph_scatholichighschool (8 seeds): 500000 moves left every run over 7 m from a
-layout, 1000000 three of eight within 6 m (28 s a run on this machine); on
-office_floor-1024x523, 500000 did as well as 1000000."""
+MOVES_PER_ROOM = 40000
+MAX_MOVES = 4_000_000
+"""Moves of a run: this many per room (core and satellites), at most MAX_MOVES, the first
+CORE_ALONE of them on the core alone. Measured on school_stjoseph_scatholichighschool (one
+run a core, seeds 0-11 or 0-23): with every move placing the satellites, 500000 moves left
+every run over 7 m from a layout and 1000000 3 of 8 within 6 m at about 20 s a run; with the
+core alone first, 1M moves (half alone) 4 of 24 at 8.5 s, 2M (half) 4 of 12 at 13 s, 4M (3M
+alone) 6 of 24 at 9.7 s, 6M (4.8M alone) 4 of 12 at 8.2 s."""
 
 SATELLITE_SHARE = 0.5
 """Share of the moves that change a satellite (turn it, resize it, or move it to another
 side of its parent), times the satellites' share of the rooms."""
+
+CORE_ALONE = 0.75
+"""Share of a run's moves (the hot first ones) that anneal the core alone, its satellites
+neither moved nor placed; from there on they are placed after every move and counted. While
+everything still moves, the satellites' places say little and cost most of the time (the
+core alone takes about a microsecond a move, with its satellites 20). See MAX_MOVES; on
+office_floor-1024x523 (3M moves, seeds 0-7) 2 runs of 8 within 6 m at 4.2 s a run, against
+6 of 8 at 27 s with every move placing the satellites (1M moves)."""
 
 GRID_CELL = 4.0
 GRID_CAPACITY = 96
@@ -199,7 +209,8 @@ class Satellites:
             core.door_ptr, core.door_to, core.on_boundary, core.width, core.height, core.wall,
             kernel_seed, self.moves(), START_TEMPERATURE * scale, END_TEMPERATURE * scale, cancel,
             self.parent, self.need, self.long_side, self.short_side, self.bounds, self.on_boundary, self.extra_ptr,
-            self.extra_to, self.extra_need, self.sibling_ptr, self.sibling_to, share)
+            self.extra_to, self.extra_need, self.sibling_ptr, self.sibling_to, share,
+            int(CORE_ALONE * self.moves()))
 
     def geometry(self, result) -> tuple[dict[str, Rect], float]:
         """The rectangles of a run's best state, and its violation."""
@@ -410,12 +421,29 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
     return total
 
 
+@njit(cache=True)
+def _keep(p, q, turned, long_side, short_side, s_turned, s_side, s_slide, s_long, s_short,
+          best_p, best_q, best_turned, best_long, best_short, best_s_turned, best_s_side, best_s_slide,
+          best_s_long, best_s_short):
+    """A state copied into the best state's arrays."""
+    best_p[:] = p
+    best_q[:] = q
+    best_turned[:] = turned
+    best_long[:] = long_side
+    best_short[:] = short_side
+    best_s_turned[:] = s_turned
+    best_s_side[:] = s_side
+    best_s_slide[:] = s_slide
+    best_s_long[:] = s_long
+    best_s_short[:] = s_short
+
+
 @njit(cache=True, nogil=True)
 def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, door_ptr, door_to, on_boundary,
                        width, height, wall, seed, moves, t_start, t_end, cancel, parent, sat_need,
                        sat_drawn_long, sat_drawn_short, sat_bounds, sat_on_boundary, extra_ptr, extra_to,
                        extra_need,
-                       sibling_ptr, sibling_to, satellite_share):
+                       sibling_ptr, sibling_to, satellite_share, core_alone_until):
     np.random.seed(seed)
     n = drawn_long.shape[0]
     ns = parent.shape[0]
@@ -459,6 +487,8 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
     x, y, w, h, cost_of, placed = placed[0], placed[1], placed[2], placed[3], placed[4], (x, y, w, h, cost_of)
     boundary_area = width * height
     cost = violation + COMPACT_WEIGHT * box / boundary_area
+    if core_alone_until > 0:
+        cost = core_violation + COMPACT_WEIGHT * box / boundary_area  # the satellites count later
     resized = 0.0
     best_violation = violation
     best_cost = cost
@@ -469,6 +499,23 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
         if best_violation <= 1e-9 and step >= moves // 2:
             break  # every door met: the rest would only make it more compact
         temperature = t_start * ratio ** (step / moves)
+        core_alone = step < core_alone_until
+        if step == core_alone_until and step > 0:
+            # the satellites count from here on: placed for the state the core has reached,
+            # which is the best so far (nothing before was scored with them)
+            core_violation, core_box = _evaluate(p, q, turned, long_side, short_side, bounds, edge_a, edge_b, need,
+                                                 door_ptr, door_to, on_boundary, width, height, wall, per_edge, work)
+            satellites_cost = _place_satellites(work, parent, sat_need, sat_on_boundary, s_long, s_short, s_turned,
+                                                s_side, s_slide, extra_ptr, extra_to, extra_need, sibling_ptr,
+                                                sibling_to, width, height, wall, x, y, w, h, cost_of, grid, counts,
+                                                stamp, np.inf, 0, placed)
+            x, y, w, h, cost_of, placed = placed[0], placed[1], placed[2], placed[3], placed[4], (x, y, w, h, cost_of)
+            best_violation = core_violation + satellites_cost
+            cost = best_violation + COMPACT_WEIGHT * core_box / boundary_area + RESIZE_WEIGHT * resized
+            best_cost = cost
+            _keep(p, q, turned, long_side, short_side, s_turned, s_side, s_slide, s_long, s_short,
+                  best_p, best_q, best_turned, best_long, best_short, best_s_turned, best_s_side, best_s_slide,
+                  best_s_long, best_s_short)
         new_p[:] = p
         new_q[:] = q
         new_turned[:] = turned
@@ -481,7 +528,7 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
         new_resized = resized
         resizing = False
         first = 0
-        if np.random.random() < satellite_share:
+        if not core_alone and np.random.random() < satellite_share:
             s = np.random.randint(ns)
             first = s
             kind = np.random.random()
@@ -514,6 +561,17 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
         new_cost = new_core + COMPACT_WEIGHT * box / boundary_area + RESIZE_WEIGHT * new_resized
         if new_cost > limit:
             continue
+        if core_alone:
+            p, new_p = new_p, p
+            q, new_q = new_q, q
+            turned, new_turned = new_turned, turned
+            if resizing:
+                long_side, spare_long = spare_long, long_side
+                short_side, spare_short = spare_short, short_side
+            cost, resized = new_cost, new_resized
+            core_violation, core_box = new_core, box
+            per_edge[:] = trial_edge
+            continue
         satellites_cost = _place_satellites(work, parent, sat_need, sat_on_boundary, new_s_long, new_s_short,
                                             new_s_turned, new_s_side, new_s_slide, extra_ptr, extra_to, extra_need,
                                             sibling_ptr, sibling_to, width, height, wall, x, y, w, h, cost_of, grid,
@@ -540,16 +598,9 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
             per_edge[:] = trial_edge
         if new_violation < best_violation - 1e-9 or (
                 abs(new_violation - best_violation) <= 1e-9 and new_cost < best_cost):
-            best_p[:] = p
-            best_q[:] = q
-            best_turned[:] = turned
-            best_long[:] = long_side
-            best_short[:] = short_side
-            best_s_turned[:] = s_turned
-            best_s_side[:] = s_side
-            best_s_slide[:] = s_slide
-            best_s_long[:] = s_long
-            best_s_short[:] = s_short
+            _keep(p, q, turned, long_side, short_side, s_turned, s_side, s_slide, s_long, s_short,
+                  best_p, best_q, best_turned, best_long, best_short, best_s_turned, best_s_side, best_s_slide,
+                  best_s_long, best_s_short)
             best_violation = new_violation
             best_cost = new_cost
     # the best state's rectangles: its satellites each take the place they were scored in
