@@ -2,13 +2,19 @@
 
 The construction (layoutdsl.compile.construct._Annealing) repairs greedy geometries on one
 core while SCIP holds it; the annealing kernels release the GIL, so runs go on beside it.
-Two kinds of run start from scratch, in turn: the sequence-pair annealer over the whole plan
-(layoutdsl.compile.anneal) and the core-and-satellites annealer
-(layoutdsl.compile.satellites). Measured on the plans with cycles (bench/results/
-satellites.txt), each constructs plans the other does not: the satellites
-school_stjoseph_scatholichighschool and office_floor-1024x523, the whole sequence pair
-office_OfficePlan's ladder. Runs from a given geometry (a greedy placement the repair gave
-up on) are the sequence pair's.
+A plan with a cycle block of CORE_BLOCK_ROOMS rooms or more starts runs from scratch of two
+kinds in turn, one of each at a time: the core-and-satellites annealer
+(layoutdsl.compile.satellites) and the sequence-pair annealer over the whole plan
+(layoutdsl.compile.anneal). Any other plan starts the sequence pair's only, one at a time.
+Runs from a given geometry (a greedy placement the repair gave up on) are the sequence
+pair's.
+
+Measured with `bench/generation.py --seeds 4` (bench/results/satellites.txt; four seeds
+say little, the same seed's first layout varies twofold between runs): the two kinds in turn
+on every plan with cycles slowed office_OfficePlan (no large block: one seed of four found
+nothing in 60 s); on office_floor-1024x523 (a 14-room block) they constructed 3 of 4 seeds
+in two runs, satellites alone on both workers 2 of 4; on school_stjoseph_scatholichighschool
+(27) 2, 0 and 1 of 4 in three runs of its seeds.
 """
 
 from __future__ import annotations
@@ -27,7 +33,7 @@ from layoutdsl.syntax.ast import Spec
 
 
 RANDOM_KINDS = ("satellites", "sequence pair")
-"""The kinds of run from scratch, in the order they take turns."""
+"""The kinds of run from scratch of a plan the satellites split, in the order they take turns."""
 
 
 class AnnealingRuns:
@@ -35,13 +41,13 @@ class AnnealingRuns:
     work (the construction repairs its greedy geometries meanwhile).
 
     `submit(geometry)` asks for a run from that geometry; runs asked for go first. A worker
-    with nothing asked for starts the next run from scratch: the core-and-satellites kind
-    and the whole sequence pair's in turn (RANDOM_KINDS; the sequence pair's only for a spec
-    the satellites do not split), at most one of each kind at a time. Each run is one chain,
-    seeded with the next draw from `seed` (the runs asked for and the random ones from two
-    streams, so a run's seed and kind do not depend on when a worker fell idle). `pop_done`
-    gives the finished run nearest a layout. Runs still going at `deadline` or at `close()`
-    are cut off and give nothing.
+    with nothing asked for starts the next run from scratch: for a spec the satellites split,
+    their kind and the whole sequence pair's in turn (RANDOM_KINDS), else the sequence
+    pair's; at most one of each kind at a time. Each run is one chain, seeded with the next
+    draw from `seed` (the runs asked for and the random ones from two streams, so a run's
+    seed and kind do not depend on when a worker fell idle). `pop_done` gives
+    the finished run nearest a layout. Runs still going at `deadline` or at `close()` are cut
+    off and give nothing.
     """
 
     def __init__(self, spec: Spec, seed: int, deadline: float | None, workers: int = CHAINS,
@@ -49,6 +55,7 @@ class AnnealingRuns:
         self.arrays = _Arrays.of(spec)
         self.satellites = Satellites.of(spec)
         self.kinds = RANDOM_KINDS if self.satellites is not None else ("sequence pair",)
+        """the kinds of run from scratch, in turn"""
         self.random_runs = 0
         self.log = log
         """told of each finished run (the construction's debug trace)"""
@@ -77,6 +84,7 @@ class AnnealingRuns:
         while not self.cancel[0]:
             if self.asked:
                 return (*self.asked.pop(0), "sequence pair")
+            # the kinds take turns, so a run's kind, like its seed, is fixed by its place
             kind = self.kinds[self.random_runs % len(self.kinds)]
             if kind not in self.random_busy:
                 self.random_busy.add(kind)
@@ -92,6 +100,7 @@ class AnnealingRuns:
                 if job is None:
                     return
             kernel_seed, start, kind = job
+            began = time.monotonic()
             if kind == "satellites":
                 result = self.satellites.chain(kernel_seed, self.cancel)
                 kernel = self.satellites
@@ -102,7 +111,8 @@ class AnnealingRuns:
             finished = None if self.cancel[0] else kernel.geometry(result)
             if finished is not None and self.log is not None:
                 origin = "from a geometry" if start is not None else "from scratch"
-                self.log(f"annealing run done ({kind}, {origin}): {finished[1]:.2f} m from a layout")
+                self.log(f"annealing run done ({kind}, {origin}, {time.monotonic() - began:.1f} s): "
+                         f"{finished[1]:.2f} m from a layout")
             with self.condition:
                 if start is None:
                     self.random_busy.discard(kind)

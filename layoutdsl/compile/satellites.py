@@ -10,13 +10,14 @@ a packed 2-core that leaves no free wall for the hanging rooms once they come ba
 
 Here the plan is split in two:
 
-- the *core*: the biconnected blocks of CORE_BLOCK_ROOMS rooms or more (else the whole
-  2-core), the part where the cycles must close. It is a sequence pair, moved and packed as
+- the *core*: the biconnected blocks of CORE_BLOCK_ROOMS rooms or more, the part where the
+  large cycles must close. It is a sequence pair, moved and packed as
   the sequence-pair annealer does (anneal._propose, anneal._evaluate);
 - the *satellites*: every other room, in breadth-first order from the core, each with the
   room it hangs off (its parent). After each packing of the core they are placed one by one,
   greedily, in free space beside their parent (_place_satellites): on one of its four sides,
-  centred, flush with either end, lined up with another door neighbour already placed, or
+  centred, flush with either end (or with the boundary, for a room that must touch it),
+  lined up with another door neighbour already placed, or
   (when nothing of that is free) flush against a sibling. A satellite's other doors (it may
   close a small cycle, as a classroom between a corridor and a closet does) add their gaps.
 
@@ -32,7 +33,8 @@ school_stjoseph_scatholichighschool, 3 runs of 8 end within 6 m of a layout (the
 reach, construct.ANNEAL_REPAIR_M) and one at 0, against none of dozens of whole-plan runs; on
 office_floor-1024x523 6 of 8 (the sequence pair alone: 2 of 8). On office_OfficePlan, whose
 core is a ladder of corridors with many rooms along its rails, the sequence pair does
-better, so compile alternates the two kinds of random start (anneal_runs.AnnealingRuns).
+better: compile starts runs of this kind only on plans with a large block
+(anneal_runs.AnnealingRuns).
 
 Every run is seeded and its number of moves fixed by the plan's size: the same seed gives
 the same geometry. Needs numba, as the sequence-pair annealer does.
@@ -71,7 +73,10 @@ CORE_BLOCK_ROOMS = 12
 and a closet beside a corridor, say) are placed as satellites, their cycle closed by the
 satellite's extra door. On school_stjoseph_scatholichighschool the core is then its 27-room
 block: with the whole 54-room 2-core as the core, two runs of 2M moves ended 16 m and 18 m
-from a layout, with the 27-room block 0.1 m and 1.9 m at 1M."""
+from a layout, with the 27-room block 0.1 m and 1.9 m at 1M. A plan without such a block is
+not split: the 2-core of office_OfficePlan (9 rooms), office_floorplanLOWER and
+office_floorplanMAIN as a core left runs 4-40 m from a layout where the sequence pair meets
+every door (bench/results/satellites.txt), and compile got slower with them."""
 
 MOVES_PER_ROOM = 40000
 MAX_MOVES = 4_000_000
@@ -99,9 +104,10 @@ GRID_CAPACITY = 96
 """The placement looks for overlaps in a grid of cells this many metres square, each listing
 up to GRID_CAPACITY rooms (a fuller cell falls back to looking at every room)."""
 
-MAX_SLIDES = 3 + 2 * 64
-"""Places along a parent's side a satellite may take: middle and ends, then two for each door
-neighbour and each sibling placed before it (beyond 64 of those, the rest are not tried)."""
+MAX_SLIDES = 5 + 2 * 64
+"""Places along a parent's side a satellite may take: middle and ends (and both ends of the
+boundary, for a room on it), then two for each door neighbour and each sibling placed
+before it (beyond 64 of those, the rest are not tried)."""
 
 
 @dataclass(frozen=True)
@@ -131,14 +137,12 @@ class Satellites:
     @classmethod
     def of(cls, spec: Spec) -> Satellites | None:
         """The split of `spec` (its L-rooms' arms drawn as rooms), or None when it has no
-        cycle (the greedy placement builds those) or no room outside its core."""
+        cycle block of CORE_BLOCK_ROOMS rooms or no room outside its core."""
         graph = room_graph(spec)
         core: set[str] = set()
         for block in nx.biconnected_components(graph):
             if len(block) >= CORE_BLOCK_ROOMS:
                 core |= block
-        if not core:
-            core = set(nx.k_core(graph, 2))
         if not core or len(core) == len(spec.rooms):
             return None
         core_arrays = _Arrays.of(spec.restricted_to(core, f"{spec.name}-core"))
@@ -363,6 +367,11 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
             slides[1] = low
             slides[2] = low + span - size
             count = 3
+            if on_boundary[s]:
+                # against the boundary across the slide (its other sides: the parent's place)
+                slides[3] = 0.0
+                slides[4] = (height if along_y else width) - size
+                count = 5
             for e in range(extra_ptr[s], extra_ptr[s + 1]):
                 if count + 2 > MAX_SLIDES:
                     break

@@ -60,10 +60,11 @@ def ladder_spec() -> Spec:
 
 def ring_block_spec() -> Spec:
     """A ring of twelve rooms (one block of CORE_BLOCK_ROOMS), a triangle of rooms beside it
-    (a small block), rooms hanging off both, and a room with no door at all."""
+    (a small block), rooms hanging off both (H3 on the boundary), and a room with no door."""
     ring = [f"K{i}" for i in range(12)]
     rooms = [room(name, 4.0, 4.0) for name in ring]
-    rooms += [room(name, 3.0, 3.0) for name in ("T1", "T2", "H1", "H2", "H3", "LONE")]
+    rooms += [room(name, 3.0, 3.0) for name in ("T1", "T2", "H1", "H2", "LONE")]
+    rooms.append(room("H3", 3.0, 3.0, on_boundary=True))
     adjacencies = [adjacent(a, b) for a, b in zip(ring, ring[1:] + ring[:1])]
     adjacencies += [adjacent("K0", "T1"), adjacent("T1", "T2"), adjacent("T2", "K0"),
                     adjacent("K5", "H1"), adjacent("H1", "H2"), adjacent("T2", "H3")]
