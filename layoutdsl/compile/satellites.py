@@ -28,13 +28,13 @@ violation for the core plus, for each satellite, its overlap with the rooms plac
 it, its extent past the boundary and its doors' gaps (in metres); 0 is a geometry in which
 every door is met, no two rooms overlap and all lies inside the boundary.
 
-Measured (bench/results/satellites.txt, runs of SATELLITE_MAX_MOVES moves on 2 cores): on
-school_stjoseph_scatholichighschool, 3 runs of 8 end within 6 m of a layout (the repair's
-reach, construct.ANNEAL_REPAIR_M) and one at 0, against none of dozens of whole-plan runs; on
-office_floor-1024x523 6 of 8 (the sequence pair alone: 2 of 8). On office_OfficePlan, whose
-core is a ladder of corridors with many rooms along its rails, the sequence pair does
-better: compile starts runs of this kind only on plans with a large block
-(anneal_runs.AnnealingRuns).
+Measured (bench/results/satellites.txt): on school_stjoseph_scatholichighschool, whose
+whole-plan sequence-pair runs never came within 5 m of a layout, about a quarter of runs end
+within 6 m (the repair's reach, construct.ANNEAL_REPAIR_M), some at 0; a 0.10 m run
+repaired into a layout in 1.6 s. compile, 60 s: the school's seeds 0-3 constructed 2, 0 and 1
+of 4 in three runs (33-45 s), never before; office_floor-1024x523's seed 0 in 18.7 s (36-37 s
+before). Plans without a block of CORE_BLOCK_ROOMS are not split (see there), and runs of
+this kind go beside whole-plan ones (anneal_runs.AnnealingRuns).
 
 Every run is seeded and its number of moves fixed by the plan's size: the same seed gives
 the same geometry. Needs numba, as the sequence-pair annealer does.
@@ -81,11 +81,15 @@ every door (bench/results/satellites.txt), and compile got slower with them."""
 MOVES_PER_ROOM = 40000
 MAX_MOVES = 4_000_000
 """Moves of a run: this many per room (core and satellites), at most MAX_MOVES, the first
-CORE_ALONE of them on the core alone. Measured on school_stjoseph_scatholichighschool (one
-run a core, seeds 0-11 or 0-23): with every move placing the satellites, 500000 moves left
-every run over 7 m from a layout and 1000000 3 of 8 within 6 m at about 20 s a run; with the
-core alone first, 1M moves (half alone) 4 of 24 at 8.5 s, 2M (half) 4 of 12 at 13 s, 4M (3M
-alone) 6 of 24 at 9.7 s, 6M (4.8M alone) 4 of 12 at 8.2 s."""
+CORE_ALONE of them on the core alone. Measured on school_stjoseph_scatholichighschool (113
+rooms with its L-rooms' arms; one run a core): with every move placing the satellites,
+500000 moves left every run over 7 m from a layout and 1000000 3 of 8 within 6 m at about
+20 s a run. With the core alone first, at 15000 moves a room (1.7M): half alone 4 runs of 12
+within 6 m at 13 s, 0.7 alone 3 of 12 at 10.4 s, 0.75 alone 6 of 24 at 9.7 s, 0.8 alone 4
+of 12 at 8.2 s. `bench/anneal.py --kernel satellites` (the best of two runs a seed,
+bench/results/satellites.txt): at 15000 a room 1 seed of 8 within 6 m (about 12 s a
+seed), at 40000 a room 2 of 4 (about 25 s): about one plan-building run per 100 s of two
+cores either way, the longer runs' share twice as high. Four seeds, or eight, say little."""
 
 SATELLITE_SHARE = 0.5
 """Share of the moves that change a satellite (turn it, resize it, or move it to another
@@ -96,8 +100,9 @@ CORE_ALONE = 0.75
 neither moved nor placed; from there on they are placed after every move and counted. While
 everything still moves, the satellites' places say little and cost most of the time (the
 core alone takes about a microsecond a move, with its satellites 20). See MAX_MOVES; on
-office_floor-1024x523 (3M moves, seeds 0-7) 2 runs of 8 within 6 m at 4.2 s a run, against
-6 of 8 at 27 s with every move placing the satellites (1M moves)."""
+office_floor-1024x523 (15000 moves a room, seeds 0-7) 2 runs of 8 within 6 m at 4.2 s a
+run, half alone 4 at 5 s, against 6 of 8 at 27 s with every move placing the satellites (1M
+moves)."""
 
 GRID_CELL = 4.0
 GRID_CAPACITY = 96
@@ -570,26 +575,18 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
         new_cost = new_core + COMPACT_WEIGHT * box / boundary_area + RESIZE_WEIGHT * new_resized
         if new_cost > limit:
             continue
-        if core_alone:
-            p, new_p = new_p, p
-            q, new_q = new_q, q
-            turned, new_turned = new_turned, turned
-            if resizing:
-                long_side, spare_long = spare_long, long_side
-                short_side, spare_short = spare_short, short_side
-            cost, resized = new_cost, new_resized
-            core_violation, core_box = new_core, box
-            per_edge[:] = trial_edge
-            continue
-        satellites_cost = _place_satellites(work, parent, sat_need, sat_on_boundary, new_s_long, new_s_short,
-                                            new_s_turned, new_s_side, new_s_slide, extra_ptr, extra_to, extra_need,
-                                            sibling_ptr, sibling_to, width, height, wall, x, y, w, h, cost_of, grid,
-                                            counts, stamp, limit - new_cost, first, placed)
-        new_violation = new_core + satellites_cost
-        new_cost += satellites_cost
-        if new_cost > limit:
-            continue
-        x, y, w, h, cost_of, placed = placed[0], placed[1], placed[2], placed[3], placed[4], (x, y, w, h, cost_of)
+        new_violation = new_core
+        if not core_alone:
+            satellites_cost = _place_satellites(work, parent, sat_need, sat_on_boundary, new_s_long, new_s_short,
+                                                new_s_turned, new_s_side, new_s_slide, extra_ptr, extra_to,
+                                                extra_need, sibling_ptr, sibling_to, width, height, wall, x, y, w, h,
+                                                cost_of, grid, counts, stamp, limit - new_cost, first, placed)
+            new_violation += satellites_cost
+            new_cost += satellites_cost
+            if new_cost > limit:
+                continue
+            x, y, w, h, cost_of, placed = placed[0], placed[1], placed[2], placed[3], placed[4], (x, y, w, h, cost_of)
+        # the move is taken (with the core alone, the satellites' arrays trade identical copies)
         core_violation, core_box = new_core, box
         p, new_p = new_p, p
         q, new_q = new_q, q
@@ -605,6 +602,8 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
         cost, resized = new_cost, new_resized
         if core_moved:
             per_edge[:] = trial_edge
+        if core_alone:
+            continue  # nothing is scored with its satellites yet
         if new_violation < best_violation - 1e-9 or (
                 abs(new_violation - best_violation) <= 1e-9 and new_cost < best_cost):
             _keep(p, q, turned, long_side, short_side, s_turned, s_side, s_slide, s_long, s_short,
