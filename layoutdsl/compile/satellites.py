@@ -32,9 +32,9 @@ Measured (bench/results/satellites.txt): on school_stjoseph_scatholichighschool,
 whole-plan sequence-pair runs never came within 5 m of a layout, about a quarter of runs end
 within 6 m (the repair's reach, construct.ANNEAL_REPAIR_M), some at 0; a 0.10 m run
 repaired into a layout in 1.6 s. compile, 60 s: the school's seeds 0-3 constructed 2, 0 and 1
-of 4 in three runs (33-45 s), never before; office_floor-1024x523's seed 0 in 18.7 s (36-37 s
-before). Plans without a block of CORE_BLOCK_ROOMS are not split (see there), and runs of
-this kind go beside whole-plan ones (anneal_runs.AnnealingRuns).
+of 4 in three runs of three versions (33-45 s), never before; office_floor-1024x523's seed 0
+in 18.7 s (36-37 s before). Plans without a block of CORE_BLOCK_ROOMS are not split (see
+there), and runs of this kind go beside whole-plan ones (anneal_runs.AnnealingRuns).
 
 Every run is seeded and its number of moves fixed by the plan's size: the same seed gives
 the same geometry. Needs numba, as the sequence-pair annealer does.
