@@ -313,6 +313,20 @@ def _crowding(cx, cy, w, h, x, y, rw, rh, placed, width, height, wall, stop, gri
     return cost
 
 
+@njit(cache=True, inline="always")
+def _flush_slides(slides, count, rooms, x, y, w, h, wall, sw, sh, along_y):
+    """Into slides from `count` on: for each of `rooms` (placed), the two places along the
+    slide that put a sw x sh satellite a wall past either end of it; the new count (at most
+    MAX_SLIDES)."""
+    for j in rooms:
+        if count + 2 > MAX_SLIDES:
+            break
+        slides[count] = y[j] + h[j] + wall if along_y else x[j] + w[j] + wall
+        slides[count + 1] = y[j] - wall - sh if along_y else x[j] - wall - sw
+        count += 2
+    return count
+
+
 @njit(cache=True)
 def _place_satellites(work, parent, need, on_boundary, long_side, short_side, turned, side_of, slide_of, extra_ptr,
                       extra_to, extra_need, sibling_ptr, sibling_to, width, height, wall, x, y, w, h, cost_of,
@@ -377,24 +391,14 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
                 slides[3] = 0.0
                 slides[4] = (height if along_y else width) - size
                 count = 5
-            for e in range(extra_ptr[s], extra_ptr[s + 1]):
-                if count + 2 > MAX_SLIDES:
-                    break
-                j = extra_to[e]
-                slides[count] = y[j] + h[j] + wall if along_y else x[j] + w[j] + wall
-                slides[count + 1] = y[j] - wall - sh if along_y else x[j] - wall - sw
-                count += 2
+            count = _flush_slides(slides, count, extra_to[extra_ptr[s]:extra_ptr[s + 1]], x, y, w, h, wall, sw,
+                                  sh, along_y)
             from_slide = 0
             if t >= 4:
                 from_slide = count  # the second round: flush against the siblings only
             if t < 0 or t >= 4:
-                for e in range(sibling_ptr[s], sibling_ptr[s + 1]):
-                    if count + 2 > MAX_SLIDES:
-                        break
-                    j = sibling_to[e]
-                    slides[count] = y[j] + h[j] + wall if along_y else x[j] + w[j] + wall
-                    slides[count + 1] = y[j] - wall - sh if along_y else x[j] - wall - sw
-                    count += 2
+                count = _flush_slides(slides, count, sibling_to[sibling_ptr[s]:sibling_ptr[s + 1]], x, y, w, h,
+                                      wall, sw, sh, along_y)
             for u in range(from_slide, count):
                 if t < 0 and u != slide_of[s] % count:
                     continue
