@@ -524,6 +524,28 @@ def cycle_blocks(spec: Spec) -> list[frozenset[str]]:
     return sorted(blocks, key=lambda b: (-len(b), sorted(b)))
 
 
+CORE_BLOCK_ROOMS = 12
+"""Biconnected blocks of this many rooms or more form the core of the core-and-satellites
+annealer (layoutdsl.compile.satellites); smaller blocks (a classroom and a closet beside a
+corridor, say) are placed as satellites, their cycle closed by the
+satellite's extra door. On school_stjoseph_scatholichighschool the core is then its 27-room
+block: with the whole 54-room 2-core as the core, two runs of 2M moves ended 16 m and 18 m
+from a layout, with the 27-room block 0.1 m and 1.9 m at 1M. A plan without such a block is
+not split: the 2-core of office_OfficePlan (9 rooms), office_floorplanLOWER and
+office_floorplanMAIN as a core left runs 4-40 m from a layout where the sequence pair meets
+every door (bench/results/satellites.txt), and compile got slower with them."""
+
+
+def core_rooms(spec: Spec) -> frozenset[str] | None:
+    """The rooms of the spec's cycle blocks of CORE_BLOCK_ROOMS rooms or more (the core that
+    layoutdsl.compile.satellites anneals, every other room placed beside it), or None when it
+    has no such block or no room outside them."""
+    core = frozenset().union(*(block for block in cycle_blocks(spec) if len(block) >= CORE_BLOCK_ROOMS))
+    if not core or len(core) == len(spec.rooms):
+        return None
+    return core
+
+
 def _mirrored(template: Mapping[str, Rect], flip_x: bool, flip_y: bool,
               turn: bool = False) -> dict[str, Rect]:
     """The template mirrored about its frame's axes (and, with `turn`, about its diagonal:

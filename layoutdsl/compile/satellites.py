@@ -10,9 +10,9 @@ a packed 2-core that leaves no free wall for the hanging rooms once they come ba
 
 Here the plan is split in two:
 
-- the *core*: the biconnected blocks of CORE_BLOCK_ROOMS rooms or more, the part where the
-  large cycles must close. It is a sequence pair, moved and packed as
-  the sequence-pair annealer does (anneal._propose, anneal._evaluate);
+- the *core*: the biconnected blocks of generate.CORE_BLOCK_ROOMS rooms or more, the part
+  where the large cycles must close. It is a sequence pair, moved and packed as the
+  sequence-pair annealer does (anneal._propose, anneal._evaluate);
 - the *satellites*: every other room, in breadth-first order from the core, each with the
   room it hangs off (its parent). After each packing of the core they are placed one by one,
   greedily, in free space beside their parent (_place_satellites): on one of its four sides,
@@ -29,12 +29,11 @@ it, its extent past the boundary and its doors' gaps (in metres); 0 is a geometr
 every door is met, no two rooms overlap and all lies inside the boundary.
 
 Measured (bench/results/satellites.txt): on school_stjoseph_scatholichighschool, whose
-whole-plan sequence-pair runs never came within 5 m of a layout, about a quarter of runs end
-within 6 m (the repair's reach, construct.ANNEAL_REPAIR_M), some at 0; a 0.10 m run
-repaired into a layout in 1.6 s. compile, 60 s: the school's seeds 0-3 constructed 2, 0 and 1
-of 4 in three runs of three versions (33-45 s), never before; office_floor-1024x523's seed 0
-in 18.7 s (36-37 s before). Plans without a block of CORE_BLOCK_ROOMS are not split (see
-there), and runs of this kind go beside whole-plan ones (anneal_runs.AnnealingRuns).
+whole-plan sequence-pair runs never came within 5 m of a layout, 11 of 16 runs end within
+6 m (the repair's reach, construct.ANNEAL_REPAIR_M), 4 of them at 0, once the satellites'
+moves start warm (SATELLITES_TEMPERATURE). compile, 60 s, with both cores on these runs
+(construct._anneal_order "alone"): the school's seeds 0-3 constructed 3 of 4 (37-48 s; 0 of
+4 before). Plans without a block of generate.CORE_BLOCK_ROOMS are not split (see there).
 
 Every run is seeded and its number of moves fixed by the plan's size: the same seed gives
 the same geometry. Needs numba, as the sequence-pair annealer does.
@@ -45,7 +44,6 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-import networkx as nx
 import numpy as np
 from numba import njit
 
@@ -64,19 +62,9 @@ from layoutdsl.compile.anneal import (
     _resize_into,
     best_of_chains,
 )
-from layoutdsl.compile.generate import RoomSizes, drawn_sides, room_graph
+from layoutdsl.compile.generate import RoomSizes, core_rooms, drawn_sides, room_graph
 from layoutdsl.layout.geometry import Rect
 from layoutdsl.syntax.ast import Spec
-
-CORE_BLOCK_ROOMS = 12
-"""Biconnected blocks of this many rooms or more form the core; smaller blocks (a classroom
-and a closet beside a corridor, say) are placed as satellites, their cycle closed by the
-satellite's extra door. On school_stjoseph_scatholichighschool the core is then its 27-room
-block: with the whole 54-room 2-core as the core, two runs of 2M moves ended 16 m and 18 m
-from a layout, with the 27-room block 0.1 m and 1.9 m at 1M. A plan without such a block is
-not split: the 2-core of office_OfficePlan (9 rooms), office_floorplanLOWER and
-office_floorplanMAIN as a core left runs 4-40 m from a layout where the sequence pair meets
-every door (bench/results/satellites.txt), and compile got slower with them."""
 
 MOVES_PER_ROOM = 40000
 MAX_MOVES = 4_000_000
@@ -103,6 +91,17 @@ core alone takes about a microsecond a move, with its satellites 20). See MAX_MO
 office_floor-1024x523 (15000 moves a room, seeds 0-7) 2 runs of 8 within 6 m at 4.2 s a
 run, half alone 4 at 5 s, against 6 of 8 at 27 s with every move placing the satellites (1M
 moves)."""
+
+SATELLITES_TEMPERATURE = 0.02
+"""The temperature (times the boundary's width plus height, as START_TEMPERATURE) at which the
+moves with the satellites begin, cooling from there to END_TEMPERATURE. The core-alone moves
+end cold (about 0.1 m on the school): carried on from there, a move that lifts a core room
+for a satellite by a metre was taken about once in e^10, and the runs froze with satellites
+walled in (their overlap most of what was left). Reheated to about 4 m, the core gives way.
+Measured with one run a seed (4M moves, two runs at a time, 30-40 s each), runs ending within
+6 m of a layout: school_stjoseph_scatholichighschool 0 of 8 as before, 2 of 8 at 0.01, 6 of 8
+(then 5 of 8 on seeds 8-15) at 0.02, 2 of 8 at 0.03, 1 of 8 at 0.05;
+office_floor-1024x523 (3M moves) 4 of 8 as before, 8 of 8 at 0.02 (bench/results/satellites.txt)."""
 
 GRID_CELL = 4.0
 GRID_CAPACITY = 96
@@ -142,14 +141,11 @@ class Satellites:
     @classmethod
     def of(cls, spec: Spec) -> Satellites | None:
         """The split of `spec` (its L-rooms' arms drawn as rooms), or None when it has no
-        cycle block of CORE_BLOCK_ROOMS rooms or no room outside its core."""
-        graph = room_graph(spec)
-        core: set[str] = set()
-        for block in nx.biconnected_components(graph):
-            if len(block) >= CORE_BLOCK_ROOMS:
-                core |= block
-        if not core or len(core) == len(spec.rooms):
+        cycle block of generate.CORE_BLOCK_ROOMS rooms or no room outside its core."""
+        core = core_rooms(spec)
+        if core is None:
             return None
+        graph = room_graph(spec)
         core_arrays = _Arrays.of(spec.restricted_to(core, f"{spec.name}-core"))
         ids = list(core_arrays.ids)
         index = {room_id: i for i, room_id in enumerate(ids)}
@@ -219,7 +215,7 @@ class Satellites:
             kernel_seed, self.moves(), START_TEMPERATURE * scale, END_TEMPERATURE * scale, cancel,
             self.parent, self.need, self.long_side, self.short_side, self.bounds, self.on_boundary, self.extra_ptr,
             self.extra_to, self.extra_need, self.sibling_ptr, self.sibling_to, share,
-            int(CORE_ALONE * self.moves()))
+            int(CORE_ALONE * self.moves()), SATELLITES_TEMPERATURE * scale)
 
     def geometry(self, result) -> tuple[dict[str, Rect], float]:
         """The rectangles of a run's best state, and its violation."""
@@ -461,7 +457,7 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
                        width, height, wall, seed, moves, t_start, t_end, cancel, parent, sat_need,
                        sat_drawn_long, sat_drawn_short, sat_bounds, sat_on_boundary, extra_ptr, extra_to,
                        extra_need,
-                       sibling_ptr, sibling_to, satellite_share, core_alone_until):
+                       sibling_ptr, sibling_to, satellite_share, core_alone_until, t_satellites):
     np.random.seed(seed)
     n = drawn_long.shape[0]
     ns = parent.shape[0]
@@ -516,8 +512,12 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
             break
         if best_violation <= 1e-9 and step >= moves // 2:
             break  # every door met: the rest would only make it more compact
-        temperature = t_start * ratio ** (step / moves)
         core_alone = step < core_alone_until
+        if core_alone or t_satellites <= 0.0:
+            temperature = t_start * ratio ** (step / moves)
+        else:
+            temperature = t_satellites * (t_end / t_satellites) ** (
+                (step - core_alone_until) / max(1, moves - core_alone_until))
         if step == core_alone_until and step > 0:
             # the satellites count from here on: placed for the state the core has reached,
             # which is the best so far (nothing before was scored with them)
