@@ -2,19 +2,18 @@
 
 The construction (layoutdsl.compile.construct._Annealing) repairs greedy geometries on one
 core while SCIP holds it; the annealing kernels release the GIL, so runs go on beside it.
-A plan with a cycle block of CORE_BLOCK_ROOMS rooms or more starts runs from scratch of two
-kinds in turn, one of each at a time: the core-and-satellites annealer
-(layoutdsl.compile.satellites) and the sequence-pair annealer over the whole plan
-(layoutdsl.compile.anneal). Any other plan starts the sequence pair's only, one at a time.
-Runs from a given geometry (a greedy placement the repair gave up on) are the sequence
-pair's.
+A plan with a cycle block of generate.CORE_BLOCK_ROOMS rooms or more (one the satellites
+split) runs the core-and-satellites annealer (layoutdsl.compile.satellites) from scratch, on
+every worker at once; any other plan the sequence-pair annealer over the whole plan
+(layoutdsl.compile.anneal), one run from scratch at a time. Runs from a given geometry (a
+greedy placement the repair gave up on) are the sequence pair's.
 
 Measured with `bench/generation.py --seeds 4` (bench/results/satellites.txt; four seeds
-say little, the same seed's first layout varies twofold between runs): the two kinds in turn
-on every plan with cycles slowed office_OfficePlan (no large block: one seed of four found
-nothing in 60 s); on office_floor-1024x523 (a 14-room block) they constructed 3 of 4 seeds
-in two runs, satellites alone on both workers 2 of 4; on school_stjoseph_scatholichighschool
-(27) 2, 0 and 1 of 4 in three runs of its seeds.
+say little, the same seed's first layout varies twofold between runs), on the two plans the
+satellites split, with the construction's main thread waiting for these runs
+(construct._anneal_order "alone"): school_stjoseph_scatholichighschool (a 27-room block)
+constructed 3 of 4 seeds, against 0 of 4 with one satellites run and one whole-plan run at a
+time beside the greedy repairs; office_floor-1024x523 (14) 2 of 4, against 3 of 4.
 """
 
 from __future__ import annotations
@@ -32,8 +31,11 @@ from layoutdsl.layout.geometry import Rect
 from layoutdsl.syntax.ast import Spec
 
 
-RANDOM_KINDS = ("satellites", "sequence pair")
-"""The kinds of run from scratch of a plan the satellites split, in the order they take turns."""
+SPLIT_KINDS = ("satellites",)
+"""The kinds of run from scratch of a plan the satellites split, in the order they take turns:
+the satellites' alone since their moves start warm (satellites.SATELLITES_TEMPERATURE). With
+that, on school_stjoseph_scatholichighschool 11 of 16 runs end within 6 m of a layout, where
+the whole-plan sequence pair's never came within 5 m."""
 
 
 class AnnealingRuns:
@@ -42,8 +44,8 @@ class AnnealingRuns:
 
     `submit(geometry)` asks for a run from that geometry; runs asked for go first. A worker
     with nothing asked for starts the next run from scratch: for a spec the satellites split,
-    their kind and the whole sequence pair's in turn (RANDOM_KINDS), else the sequence
-    pair's; at most one of each kind at a time. Each run is one chain, seeded with the next
+    theirs (SPLIT_KINDS), as many at a time as there are workers, else the sequence pair's,
+    one at a time. Each run is one chain, seeded with the next
     draw from `seed` (the runs asked for and the random ones from two streams, so a run's
     seed and kind do not depend on when a worker fell idle). `pop_done` gives
     the finished run nearest a layout. Runs still going at `deadline` or at `close()` are cut
@@ -54,8 +56,10 @@ class AnnealingRuns:
                  log: Callable[[str], None] | None = None):
         self.arrays = _Arrays.of(spec)
         self.satellites = Satellites.of(spec)
-        self.kinds = RANDOM_KINDS if self.satellites is not None else ("sequence pair",)
+        self.kinds = SPLIT_KINDS if self.satellites is not None else ("sequence pair",)
         """the kinds of run from scratch, in turn"""
+        self.at_once = max(1, workers) if self.satellites is not None else 1
+        """how many runs of one kind from scratch may go at a time"""
         self.random_runs = 0
         self.log = log
         """told of each finished run (the construction's debug trace)"""
@@ -66,7 +70,7 @@ class AnnealingRuns:
         self.condition = threading.Condition()
         self.asked: list[tuple[int, dict[str, Rect]]] = []
         self.done: list[tuple[dict[str, Rect], float, bool]] = []
-        self.random_busy: set[str] = set()
+        self.random_busy: dict[str, int] = {}
         self.threads = [threading.Thread(target=self._work, name="layoutdsl-anneal", daemon=True)
                         for _ in range(workers)]
         for thread in self.threads:
@@ -86,8 +90,8 @@ class AnnealingRuns:
                 return (*self.asked.pop(0), "sequence pair")
             # the kinds take turns, so a run's kind, like its seed, is fixed by its place
             kind = self.kinds[self.random_runs % len(self.kinds)]
-            if kind not in self.random_busy:
-                self.random_busy.add(kind)
+            if self.random_busy.get(kind, 0) < self.at_once:
+                self.random_busy[kind] = self.random_busy.get(kind, 0) + 1
                 self.random_runs += 1
                 return self.random_draw.randrange(2**31), None, kind
             self.condition.wait(0.1)
@@ -115,7 +119,7 @@ class AnnealingRuns:
                          f"{finished[1]:.2f} m from a layout")
             with self.condition:
                 if start is None:
-                    self.random_busy.discard(kind)
+                    self.random_busy[kind] -= 1
                 if finished is not None:
                     self.done.append((*finished, start is not None))
                 self.condition.notify_all()

@@ -42,7 +42,7 @@ from collections.abc import Callable, Mapping
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects, separations
 from layoutdsl.compile import lshape
-from layoutdsl.compile.generate import (TOP_CHOICES, RoomSizes, cycle_blocks, drawn_sides, generate_geometry,
+from layoutdsl.compile.generate import (TOP_CHOICES, RoomSizes, core_rooms, cycle_blocks, drawn_sides, generate_geometry,
                                         room_graph)
 from layoutdsl.compile.ladders import find_ladder, ladder_template
 from layoutdsl.syntax.ast import Room, Spec
@@ -1086,7 +1086,7 @@ def construct_start(
     # not at all when a hint geometry constructs)
     templates = _TemplateSets(drawn, seed, deadline, hanging or {})
     order = _anneal_order(drawn) if anneal else None
-    if order == "first" and has_hints:
+    if order in ("first", "alone") and has_hints:
         # the hints construct most plans in well under a second: no core is taken from them
         # before ANNEAL_DELAY or their first failure
         order = "beside"
@@ -1186,7 +1186,7 @@ def _give_way(annealing: _Annealing | None, kind: str) -> Callable[[], bool] | N
 def _in_turn(candidates: list, annealing: _Annealing | None):
     """(kind, maker, last) of each seed geometry to try: an annealed geometry whenever a run
     close enough to a layout is done, else the next of `candidates`; when those are used up,
-    annealed geometries as they come. The hints' geometries come first all the same: a
+    or for an annealing "alone" (_anneal_order), annealed geometries as they come. The hints' geometries come first all the same: a
     spec with hints asks for its own arrangement.
 
     Which geometry comes next thus depends on how fast the annealing runs, as the repairs'
@@ -1201,7 +1201,10 @@ def _in_turn(candidates: list, annealing: _Annealing | None):
             # the first geometry failed: annealing runs on the spare cores from now on
             annealing.start()
         hints_next = next_candidate < len(candidates) and candidates[next_candidate][0] == "hints"
-        if annealing is not None and not hints_next and annealing.promising():
+        if annealing is not None and annealing.order == "alone" and not hints_next:
+            # both cores anneal: see _anneal_order
+            yield "annealed", annealing.wait, False
+        elif annealing is not None and not hints_next and annealing.promising():
             yield "annealed", annealing.take, False
         elif next_candidate < len(candidates):
             kind, make_geometry = candidates[next_candidate]
@@ -1498,10 +1501,19 @@ repaired in 0.5 s, 13.4 m stalled for 34 s; office_floor-1024x523 repaired from 
 
 
 def _anneal_order(spec: Spec) -> str | None:
-    """Where annealed geometries go among the graph geometries of this spec: "first" for a
-    cycle block of ANNEAL_BLOCK_ROOMS or a ladder, "beside" for smaller cycles, None for a
-    spec without cycles (the greedy placement constructs those fast), without the annealer
-    installed, or that the annealer does not handle (annealable)."""
+    """Where annealed geometries go among the graph geometries of this spec: "alone" for a
+    plan the core-and-satellites annealer splits (a cycle block of generate.CORE_BLOCK_ROOMS
+    and rooms outside it), "first" for a cycle block of ANNEAL_BLOCK_ROOMS or a ladder,
+    "beside" for smaller cycles, None for a spec without cycles (the greedy placement
+    constructs those fast), without the annealer installed, or that the annealer does not
+    handle (annealable).
+
+    "alone": after its hints, the construction repairs annealed geometries only and leaves
+    both cores to the runs. The greedy placement never constructed
+    school_stjoseph_scatholichighschool, and its repairs and cycle-block solves halved the
+    runs' speed (a 4M-move run took about 37 s beside them, 20-30 s without): measured with
+    `bench/generation.py --seeds 4`, 3 of 4 seeds constructed, 0 of 4 beside the greedy
+    placement (layoutdsl.compile.anneal_runs)."""
     blocks = cycle_blocks(spec)
     # numba is an optional dependency ('layoutdsl[anneal]'), looked for but not imported
     # here: importing it takes ~0.7 s, a share of a small variant's time limit (measured:
@@ -1509,6 +1521,8 @@ def _anneal_order(spec: Spec) -> str | None:
     # when every construction imported it); the annealing imports it when it starts
     if not blocks or not annealable(spec) or importlib.util.find_spec("numba") is None:
         return None
+    if core_rooms(spec) is not None:
+        return "alone"
     if (max(map(len, blocks)) >= ANNEAL_BLOCK_ROOMS
             or any(find_ladder(block_spec(spec, block)) for block in blocks)):
         return "first"
@@ -1546,8 +1560,9 @@ class _Annealing:
     nothing to do anneals from scratch (layoutdsl.compile.anneal_runs.AnnealingRuns).
 
     The annealing starts at once, on two workers, for the plans the greedy placement alone
-    has never constructed ("first"); for the others ("beside"), on one worker, after
-    ANNEAL_DELAY or once the first geometry has failed.
+    has never constructed ("first", and "alone", where the construction waits for it and
+    tries no greedy geometry); for the others ("beside"), on one worker, after ANNEAL_DELAY
+    or once the first geometry has failed.
     """
 
     def __init__(self, spec: Spec, seed: int, deadline: float, order: str):
@@ -1557,7 +1572,7 @@ class _Annealing:
         self.taken_violation = math.inf
         """The violation of the annealed geometry taken last."""
         self.lock = threading.Lock()
-        self.timer = threading.Timer(0.0 if order == "first" else ANNEAL_DELAY, self.start)
+        self.timer = threading.Timer(0.0 if order in ("first", "alone") else ANNEAL_DELAY, self.start)
         self.timer.daemon = True
         self.timer.start()
 
@@ -1567,7 +1582,7 @@ class _Annealing:
                 from layoutdsl.compile.anneal_runs import AnnealingRuns
 
                 self.runs = AnnealingRuns(self.spec, self.seed, self.deadline,
-                                          workers=2 if self.order == "first" else 1, log=_debug)
+                                          workers=2 if self.order in ("first", "alone") else 1, log=_debug)
 
     def anneal_from(self, geometry: dict[str, Rect]) -> None:
         """Anneal from a seed geometry (of the drawn spec) the repair gave up on."""

@@ -200,6 +200,8 @@ def test_specs_with_pinned_rooms_are_left_to_the_greedy_placement():
 class _Finished:
     """An annealing with a finished run close enough to a layout, every time it is asked."""
 
+    order = "first"
+
     def start(self):
         pass
 
@@ -224,6 +226,33 @@ def test_the_hints_geometries_come_before_any_annealed_one():
     assert kinds == ["hints", "hints", "annealed", "annealed", "annealed"]
     kinds = [kind for kind, _, last in construct._in_turn(candidates, None)]
     assert kinds == ["hints", "hints", "generated", "graph"]
+
+
+class _Waiting(_Finished):
+    """The annealing of a plan the satellites split (order "alone"), no run done yet."""
+
+    order = "alone"
+
+    def promising(self):
+        return False
+
+    def wait(self):
+        return None
+
+
+def test_a_split_plan_waits_for_annealed_geometries_after_its_hints():
+    """A plan with a large cycle block anneals on both cores: after its hints, it waits for
+    annealed geometries and repairs no greedy one, even while none is done."""
+    from layoutdsl.compile import construct
+
+    def maker():
+        return None
+
+    annealing = _Waiting()
+    candidates = [("hints", maker), ("generated", maker), ("graph", maker)]
+    tried = list(itertools.islice(construct._in_turn(candidates, annealing), 4))
+    assert [kind for kind, _, _ in tried] == ["hints", "annealed", "annealed", "annealed"]
+    assert all(make == annealing.wait for _, make, _ in tried[1:])
 
 
 def test_the_finished_run_nearest_a_layout_is_taken_first():

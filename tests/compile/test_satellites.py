@@ -14,12 +14,12 @@ import pytest
 
 from layoutdsl.api import load_spec
 from layoutdsl.compile import construct
-from layoutdsl.compile.anneal_runs import RANDOM_KINDS, AnnealingRuns
+from layoutdsl.compile.anneal_runs import AnnealingRuns
 from layoutdsl.compile.generate import room_graph
 from layoutdsl.compile.satellites import Satellites
 from layoutdsl.layout.verify import verify
 
-from _specs import cycle_spec, ring_block_spec, tree_spec
+from _specs import cycle_spec, ladder_spec, ring_block_spec, tree_spec
 
 SPECS = Path(__file__).resolve().parents[2] / "specs"
 TOL = 1e-6
@@ -68,6 +68,13 @@ def test_the_core_is_the_large_blocks_and_every_other_room_hangs_off_one_placed_
     assert satellites.ids[satellites.parent[t2]] == "K0"
     extras = satellites.extra_to[satellites.extra_ptr[t2]:satellites.extra_ptr[t2 + 1]]
     assert [satellites.ids[j] for j in extras] == ["T1"]
+
+
+def test_a_split_plan_anneals_alone_and_others_beside_the_greedy_placement():
+    """The construction gives both cores to the annealing for a plan the satellites split
+    (construct._anneal_order "alone"), and not for one without a large block."""
+    assert construct._anneal_order(ring_block_spec()) == "alone"
+    assert construct._anneal_order(ladder_spec()) == "first"
 
 
 def test_a_plan_without_a_large_block_is_not_split():
@@ -127,23 +134,25 @@ def test_a_satellites_geometry_repairs_into_a_verified_layout():
     assert verify(spec, construct.rects_to_layout(spec, rects)) == []
 
 
-def test_a_plan_with_a_large_block_takes_turns_between_the_kinds_with_runs_asked_for_first():
-    """Its runs from scratch alternate satellites and sequence pair, one of each at a time;
+def test_a_plan_with_a_large_block_runs_satellites_on_every_worker_with_runs_asked_for_first():
+    """Its runs from scratch are the satellites', as many at a time as there are workers;
     runs asked for go first and are the sequence pair's. A plan without a large block starts
-    sequence-pair runs only."""
+    sequence-pair runs only, one at a time."""
     runs = AnnealingRuns(ring_block_spec(), seed=0, deadline=None, workers=0)
     try:
+        runs.at_once = 2  # as with two workers, whose threads this test does without
         with runs.condition:
             first, second = runs._next_job(), runs._next_job()
-            assert [first[1:], second[1:]] == [(None, kind) for kind in RANDOM_KINDS]
-            runs.random_busy.discard(first[2])
+            assert [first[1:], second[1:]] == [(None, "satellites")] * 2
+            assert first[0] != second[0]
+            runs.random_busy["satellites"] -= 1  # one of them is done
             runs.asked.append((7, {"K0": (0.0, 0.0, 1.0, 1.0)}))  # the lock is held
             assert runs._next_job() == (7, {"K0": (0.0, 0.0, 1.0, 1.0)}, "sequence pair")
-            assert runs._next_job()[1:] == (None, RANDOM_KINDS[0])
+            assert runs._next_job()[1:] == (None, "satellites")
     finally:
         runs.close()
     runs = AnnealingRuns(_school(), seed=0, deadline=None, workers=0)
     try:
-        assert runs.kinds == ("sequence pair",)
+        assert runs.kinds == ("sequence pair",) and runs.at_once == 1
     finally:
         runs.close()
