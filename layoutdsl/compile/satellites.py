@@ -29,11 +29,12 @@ it, its extent past the boundary and its doors' gaps (in metres); 0 is a geometr
 every door is met, no two rooms overlap and all lies inside the boundary.
 
 Measured (bench/results/satellites.txt): on school_stjoseph_scatholichighschool, whose
-whole-plan sequence-pair runs never came within 5 m of a layout, 11 of 16 runs end within
-6 m (the repair's reach, construct.ANNEAL_REPAIR_M), 4 of them at 0, once the satellites'
-moves start warm (SATELLITES_TEMPERATURE). compile, 60 s, with both cores on these runs
-(construct._anneal_order "alone"): the school's seeds 0-3 constructed 3 of 4 (37-48 s; 0 of
-4 before). Plans without a block of generate.CORE_BLOCK_ROOMS are not split (see there).
+whole-plan sequence-pair runs never came within 5 m of a layout, 11 of 16 runs of 4M moves
+end within 6 m (the repair's reach, construct.ANNEAL_REPAIR_M), 2 of them at 0, once the
+satellites' moves start warm (SATELLITES_TEMPERATURE); 3 of 8 of 2M. compile, 60 s, with
+both cores on runs of 2M moves (construct._anneal_order "alone", MAX_MOVES): the school's
+seeds 0-7 constructed 6 of 8, the first layout after 22-37 s (0 of 4 seeds before). Plans
+without a block of generate.CORE_BLOCK_ROOMS are not split (see there).
 
 Every run is seeded and its number of moves fixed by the plan's size: the same seed gives
 the same geometry. Needs numba, as the sequence-pair annealer does.
@@ -67,17 +68,19 @@ from layoutdsl.layout.geometry import Rect
 from layoutdsl.syntax.ast import Spec
 
 MOVES_PER_ROOM = 40000
-MAX_MOVES = 4_000_000
+MAX_MOVES = 2_000_000
 """Moves of a run: this many per room (core and satellites), at most MAX_MOVES, the first
-CORE_ALONE of them on the core alone. Measured on school_stjoseph_scatholichighschool (113
-rooms with its L-rooms' arms; one run a core): with every move placing the satellites,
-500000 moves left every run over 7 m from a layout and 1000000 3 of 8 within 6 m at about
-20 s a run. With the core alone first, at 15000 moves a room (1.7M): half alone 4 runs of 12
-within 6 m at 13 s, 0.7 alone 3 of 12 at 10.4 s, 0.75 alone 6 of 24 at 9.7 s, 0.8 alone 4
-of 12 at 8.2 s. `bench/anneal.py --kernel satellites` (the best of two runs a seed,
-bench/results/satellites.txt): at 15000 a room 1 seed of 8 within 6 m (about 12 s a
-seed), at 40000 a room 2 of 4 (about 25 s): about one plan-building run per 100 s of two
-cores either way, the longer runs' share twice as high. Four seeds, or eight, say little."""
+CORE_ALONE of them on the core alone. With the satellites' moves warm
+(SATELLITES_TEMPERATURE), one run a seed: 2M moves ended 3 runs of 8 within 6 m on
+school_stjoseph_scatholichighschool at 16-23 s a run, 4M 11 of 16 at 27-43 s. In compile
+(bench/generation.py --seeds 8, both cores on these runs) the shorter runs fit two rounds into
+the construction's 48 s where the longer fit one: the school constructed 6 of 8 seeds, its
+first layout after 22-37 s (median 25.6 s), against 5 of 8 after 37-44 s at 4M;
+office_floor-1024x523 (3.04M moves before) 4 of 8 after 13-18 s, against 5 of 8 after
+20-43 s. Before the reheat, cold runs: with every move placing the satellites, 1M moves
+left 3 of 8 within 6 m at about 20 s a run; with the core alone first, at 15000 moves a room
+(1.7M) 0.5 alone 4 of 12 at 13 s, 0.7 3 of 12 at 10.4 s, 0.75 6 of 24 at 9.7 s, 0.8 4 of
+12 at 8.2 s (bench/results/satellites.txt). Eight seeds say little."""
 
 SATELLITE_SHARE = 0.5
 """Share of the moves that change a satellite (turn it, resize it, or move it to another
