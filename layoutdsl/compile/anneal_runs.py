@@ -32,11 +32,11 @@ from layoutdsl.layout.geometry import Rect
 from layoutdsl.syntax.ast import Spec
 
 
-SPLIT_KINDS = ("satellites",)
-"""The kinds of run from scratch of a plan the satellites split, in the order they take turns:
-the satellites' alone since their moves start warm (satellites.SATELLITES_TEMPERATURE). With
-that, on school_stjoseph_scatholichighschool 11 of 16 runs end within 6 m of a layout, where
-the whole-plan sequence pair's never came within 5 m."""
+SPLIT_KIND = "satellites"
+"""The kind of run from scratch of a plan the satellites split: the satellites' alone (no
+whole-plan runs between them) since their moves start warm (satellites.SATELLITES_TEMPERATURE).
+With that, on school_stjoseph_scatholichighschool 11 of 16 runs end within 6 m of a layout,
+where the whole-plan sequence pair's never came within 5 m."""
 
 
 class AnnealingRuns:
@@ -45,23 +45,21 @@ class AnnealingRuns:
 
     `submit(geometry)` asks for a run from that geometry; runs asked for go first. A worker
     with nothing asked for starts the next run from scratch: for a spec the satellites split,
-    theirs (SPLIT_KINDS), as many at a time as there are workers, else the sequence pair's,
-    one at a time. Each run is one chain, seeded with the next
-    draw from `seed` (the runs asked for and the random ones from two streams, so a run's
-    seed and kind do not depend on when a worker fell idle). `pop_done` gives
-    the finished run nearest a layout. Runs still going at `deadline` or at `close()` are cut
-    off and give nothing.
+    theirs (SPLIT_KIND), as many at a time as there are workers, else the sequence pair's,
+    one at a time. Each run is one chain, seeded with the next draw from `seed` (the runs
+    asked for and the random ones from two streams, so a run's seed does not depend on when a
+    worker fell idle). `pop_done` gives the finished run nearest a layout. Runs still going
+    at `deadline` or at `close()` are cut off and give nothing.
     """
 
     def __init__(self, spec: Spec, seed: int, deadline: float | None, workers: int = CHAINS,
                  log: Callable[[str], None] | None = None):
         self.arrays = _Arrays.of(spec)
         self.satellites = Satellites.of(spec)
-        self.kinds = SPLIT_KINDS if self.satellites is not None else ("sequence pair",)
-        """the kinds of run from scratch, in turn"""
+        self.kind = SPLIT_KIND if self.satellites is not None else "sequence pair"
+        """the kind of run from scratch"""
         self.at_once = max(1, workers) if self.satellites is not None else 1
-        """how many runs of one kind from scratch may go at a time"""
-        self.random_runs = 0
+        """how many runs from scratch may go at a time"""
         self.log = log
         """told of each finished run (the construction's debug trace)"""
         self.draw = random.Random(seed)
@@ -71,7 +69,8 @@ class AnnealingRuns:
         self.condition = threading.Condition()
         self.asked: list[tuple[int, dict[str, Rect]]] = []
         self.done: list[tuple[dict[str, Rect], float, bool]] = []
-        self.random_busy: dict[str, int] = {}
+        self.random_busy = 0
+        """runs from scratch going"""
         self.threads = [threading.Thread(target=self._work, name="layoutdsl-anneal", daemon=True)
                         for _ in range(workers)]
         for thread in self.threads:
@@ -89,12 +88,9 @@ class AnnealingRuns:
         while not self.cancel[0]:
             if self.asked:
                 return (*self.asked.pop(0), "sequence pair")
-            # the kinds take turns, so a run's kind, like its seed, is fixed by its place
-            kind = self.kinds[self.random_runs % len(self.kinds)]
-            if self.random_busy.get(kind, 0) < self.at_once:
-                self.random_busy[kind] = self.random_busy.get(kind, 0) + 1
-                self.random_runs += 1
-                return self.random_draw.randrange(2**31), None, kind
+            if self.random_busy < self.at_once:
+                self.random_busy += 1
+                return self.random_draw.randrange(2**31), None, self.kind
             self.condition.wait(0.1)
         return None
 
@@ -120,7 +116,7 @@ class AnnealingRuns:
                          f"{finished[1]:.2f} m from a layout")
             with self.condition:
                 if start is None:
-                    self.random_busy[kind] -= 1
+                    self.random_busy -= 1
                 if finished is not None:
                     self.done.append((*finished, start is not None))
                 self.condition.notify_all()
