@@ -42,8 +42,8 @@ from collections.abc import Callable, Mapping
 
 from layoutdsl.layout.geometry import SIDES, Rect, layout_from_rects, separations
 from layoutdsl.compile import lshape
-from layoutdsl.compile.generate import (TOP_CHOICES, RoomSizes, core_rooms, cycle_blocks, drawn_sides, generate_geometry,
-                                        room_graph)
+from layoutdsl.compile.generate import (TOP_CHOICES, RoomSizes, core_rooms, cycle_blocks, drawn_sides,
+                                        generate_geometry, room_graph)
 from layoutdsl.compile.ladders import find_ladder, ladder_template
 from layoutdsl.syntax.ast import Room, Spec
 
@@ -1086,7 +1086,7 @@ def construct_start(
     # not at all when a hint geometry constructs)
     templates = _TemplateSets(drawn, seed, deadline, hanging or {})
     order = _anneal_order(drawn) if anneal else None
-    if order in ("first", "alone") and has_hints:
+    if order in AT_ONCE_ORDERS and has_hints:
         # the hints construct most plans in well under a second: no core is taken from them
         # before ANNEAL_DELAY or their first failure
         order = "beside"
@@ -1186,8 +1186,8 @@ def _give_way(annealing: _Annealing | None, kind: str) -> Callable[[], bool] | N
 def _in_turn(candidates: list, annealing: _Annealing | None):
     """(kind, maker, last) of each seed geometry to try: an annealed geometry whenever a run
     close enough to a layout is done, else the next of `candidates`; when those are used up,
-    or for an annealing "alone" (_anneal_order), annealed geometries as they come. The hints' geometries come first all the same: a
-    spec with hints asks for its own arrangement.
+    or for an annealing "alone" (_anneal_order), annealed geometries as they come. The hints'
+    geometries come first all the same: a spec with hints asks for its own arrangement.
 
     Which geometry comes next thus depends on how fast the annealing runs, as the repairs'
     outcomes depend on their time limits. A spec without cycles never starts a run, and a
@@ -1543,6 +1543,10 @@ def annealable(spec: Spec) -> bool:
             and not spec.positions and not spec.connections and not spec.clusters)
 
 
+AT_ONCE_ORDERS = ("first", "alone")
+"""The orders (_anneal_order) whose annealing starts at once, on two workers; with hints, a
+spec of these orders anneals "beside" them instead."""
+
 ANNEAL_DELAY = 2.0
 """Seconds after which a construction of a spec with small cycle blocks starts annealing
 (at once if its first geometry fails sooner): school_wilbraham's variants mostly construct
@@ -1573,7 +1577,7 @@ class _Annealing:
         self.taken_violation = math.inf
         """The violation of the annealed geometry taken last."""
         self.lock = threading.Lock()
-        self.timer = threading.Timer(0.0 if order in ("first", "alone") else ANNEAL_DELAY, self.start)
+        self.timer = threading.Timer(0.0 if order in AT_ONCE_ORDERS else ANNEAL_DELAY, self.start)
         self.timer.daemon = True
         self.timer.start()
 
@@ -1583,7 +1587,7 @@ class _Annealing:
                 from layoutdsl.compile.anneal_runs import AnnealingRuns
 
                 self.runs = AnnealingRuns(self.spec, self.seed, self.deadline,
-                                          workers=2 if self.order in ("first", "alone") else 1, log=_debug)
+                                          workers=2 if self.order in AT_ONCE_ORDERS else 1, log=_debug)
 
     def anneal_from(self, geometry: dict[str, Rect]) -> None:
         """Anneal from a seed geometry (of the drawn spec) the repair gave up on."""
