@@ -516,7 +516,7 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
         if best_violation <= 1e-9 and step >= moves // 2:
             break  # every door met: the rest would only make it more compact
         core_alone = step < core_alone_until
-        if core_alone or t_satellites <= 0.0:
+        if core_alone:
             temperature = t_start * ratio ** (step / moves)
         else:
             temperature = t_satellites * (t_end / t_satellites) ** (
