@@ -841,6 +841,7 @@ def _repair(
     give_way: Callable[[], bool] | None = None,
     quick: bool = False,
     rebox: Callable[[dict[str, Rect]], _Problem] | None = None,
+    max_rounds: int | None = None,
 ) -> dict[str, Rect] | None:
     """Relations from the geometry, repaired round by round until they admit a layout.
 
@@ -854,7 +855,8 @@ def _repair(
     that never repairs (QUICK_FIRST_STRETCH_M, QUICK_ROUNDS), for another seed geometry.
     `rebox` (hint geometries of a spec with L-rooms): the problem with each L-room's doors on
     its boxes nearest their neighbours in the given rectangles; after each stretched round, a
-    door the round brought nearer the L's other box moves to it (_reboxed).
+    door the round brought nearer the L's other box moves to it (_reboxed). `max_rounds`:
+    give the geometry up when this many rounds left pairs stretched (ANNEALED_ROUNDS).
     """
     options = _first_options(problem, geometry, free_defects)
     start: _Outcome | None = None
@@ -889,6 +891,9 @@ def _repair(
         total = sum(outcome.stretched.values())
         if quick and (round_index + 1 >= QUICK_ROUNDS or (round_index == 0 and total > QUICK_FIRST_STRETCH_M)):
             _debug("  given up (quick)")
+            return None
+        if max_rounds is not None and round_index + 1 >= max_rounds:
+            _debug("  given up (rounds)")
             return None
         stalled = total > 0.95 * best_total
         best_total = min(best_total, total)
@@ -1159,7 +1164,9 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
                         max_stalls=MAX_STALLS if kind in ("hints", "annealed") else GRAPH_MAX_STALLS,
                         free_defects=kind == "generated", local=kind == "hints",
                         give_way=_give_way(annealing, kind), quick=quick and kind == "generated",
-                        rebox=rebox if spec.arms and kind == "hints" else None)
+                        rebox=rebox if spec.arms and kind == "hints" else None,
+                        max_rounds=(ANNEALED_ROUNDS if kind == "annealed" and annealing is not None
+                                    and annealing.order == "alone" else None))
         if rects is not None:
             return rects
         if annealing is not None and kind in ("generated", "graph"):
@@ -1220,6 +1227,16 @@ def _in_turn(candidates: list, annealing: _Annealing | None):
 SHRINK_ORDER: tuple[bool | float, ...] = (False, True)
 """Hint geometries in the order tried: the original boxes, then boxes shrunk to target."""
 
+
+ANNEALED_ROUNDS = 2
+"""Rounds after which the repair of an annealed geometry of a split plan (_anneal_order
+"alone", where more runs keep coming) gives it up when pairs are still stretched. Measured
+on satellites runs' geometries (seeds 0-9, at the committed kernel and at trial weights of
+the core's doors, 70 runs), each repaired alone for up to 15 s: the 23 that repaired (10 on
+school_stjoseph_scatholichighschool, 13 on office_floor-1024x523) all did so within 2.4 s,
+and with this limit the same 23 repair; the others ran 12-16 s before failing, and now
+0.7-5.3 s. In compile those long repairs held a core while two runs went on, which then
+took 17-19 s where they take 12-13 s alone."""
 
 GRAPH_MAX_STALLS = 1
 """Rounds without progress after which a generated or spring geometry is given up."""

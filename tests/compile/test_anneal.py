@@ -255,6 +255,39 @@ def test_a_split_plan_waits_for_annealed_geometries_after_its_hints():
     assert all(make == annealing.wait for _, make, _ in tried[1:])
 
 
+def test_a_split_plan_gives_an_annealed_geometry_few_repair_rounds(monkeypatch):
+    """More runs keep coming for a plan the satellites split: its annealed geometries get
+    ANNEALED_ROUNDS repair rounds; those of other plans as many as they need."""
+    import random
+    import time
+
+    from layoutdsl.compile import construct
+
+    spec = _office()
+    geometry = {r.id: (0.0, 0.0, r.target_w, r.target_h) for r in spec.rooms}
+    limits = []
+
+    def repair(problem, geometry_, deadline, seed, **options):
+        limits.append(options["max_rounds"])
+        return geometry_  # "repaired": the construction returns it
+
+    class _Done(_Waiting):
+        taken_violation = 1.0
+
+        def wait(self):
+            return geometry
+
+    monkeypatch.setattr(construct, "_repair", repair)
+    problem = construct._Problem.of(spec)
+    for order, expected in (("alone", construct.ANNEALED_ROUNDS), ("first", None)):
+        annealing = _Done()
+        annealing.order = order
+        annealing.take = annealing.wait
+        rects = construct._first_repaired(spec, problem, [], time.monotonic() + 5.0, 0, random.Random(0),
+                                          annealing)
+        assert rects == geometry and limits.pop() == expected
+
+
 def test_the_finished_run_nearest_a_layout_is_taken_first():
     """Runs finish while a repair holds the construction: the nearest to a layout goes
     first, whatever the order they finished in, and the unfit are dropped."""

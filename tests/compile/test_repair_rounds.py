@@ -133,6 +133,14 @@ def test_a_quick_repair_stops_after_its_rounds(monkeypatch):
     assert rects is None and len(rounds) == 1
 
 
+def test_a_repair_with_a_round_limit_gives_up_when_that_many_rounds_stretched():
+    # the pile repairs in its second round: a limit of two rounds lets it, one does not
+    rects, rounds = _repair_of_a_pile(max_rounds=2)
+    assert rects is not None and len(rounds) == 2
+    rects, rounds = _repair_of_a_pile(max_rounds=1)
+    assert rects is None and len(rounds) == 1
+
+
 def test_a_door_moves_to_the_l_rooms_box_a_round_brought_its_neighbour_to():
     # specs/l_corridor.lay: C0's long arm lies along the bottom, its second arm rises at the
     # right. R1 is drawn at the long arm, so its door goes there; a round that moved R1 next
