@@ -867,6 +867,8 @@ def _repair(
         room_id: rect[2] >= rect[3] for room_id, rect in geometry.items()
     }
     turnable: set[str] = set()
+    if quick:
+        max_rounds = min(max_rounds or QUICK_ROUNDS, QUICK_ROUNDS)
     for round_index in range(len(FREE_RADII) * 3):
         left = deadline - time.monotonic()
         if left <= 0.05:
@@ -889,11 +891,11 @@ def _repair(
                + ", ".join(f"{a}-{b} {options[(a, b)]} {v:.2f}"
                            for (a, b), v in sorted(outcome.stretched.items())))
         total = sum(outcome.stretched.values())
-        if quick and (round_index + 1 >= QUICK_ROUNDS or (round_index == 0 and total > QUICK_FIRST_STRETCH_M)):
+        if quick and round_index == 0 and total > QUICK_FIRST_STRETCH_M:
             _debug("  given up (quick)")
             return None
         if max_rounds is not None and round_index + 1 >= max_rounds:
-            _debug("  given up (rounds)")
+            _debug(f"  given up after {max_rounds} rounds")
             return None
         stalled = total > 0.95 * best_total
         best_total = min(best_total, total)
@@ -1236,7 +1238,7 @@ the core's doors, 70 runs), each repaired alone for up to 15 s: the 23 that repa
 school_stjoseph_scatholichighschool, 13 on office_floor-1024x523) all did so within 2.4 s,
 and with this limit the same 23 repair; the others ran 12-16 s before failing, and now
 0.7-5.3 s. In compile those long repairs held a core while two runs went on, which then
-took 17-19 s where they take 12-13 s alone."""
+took 17-19 s where they take 12-13 s alone (bench/results/satellites.txt, section 4)."""
 
 GRAPH_MAX_STALLS = 1
 """Rounds without progress after which a generated or spring geometry is given up."""

@@ -282,7 +282,6 @@ def test_a_split_plan_gives_an_annealed_geometry_few_repair_rounds(monkeypatch):
     for order, expected in (("alone", construct.ANNEALED_ROUNDS), ("first", None)):
         annealing = _Done()
         annealing.order = order
-        annealing.take = annealing.wait
         rects = construct._first_repaired(spec, problem, [], time.monotonic() + 5.0, 0, random.Random(0),
                                           annealing)
         assert rects == geometry and limits.pop() == expected
