@@ -41,18 +41,12 @@ def _with_aspect(spec, aspect: float | None):
     return dataclasses.replace(spec, boundary=dataclasses.replace(spec.boundary, w=width, h=area / width))
 
 
-def differences(path: Path, seeds: int, aspect: float | None) -> list[float]:
-    """Each seed's greedy placement's difference from the original plan."""
+def differences(spec, original: dict[str, tuple[float, float]], seeds: int, aspect: float | None) -> list[float]:
+    """Each seed's greedy placement of `spec` (its boundary reshaped to `aspect`) scored
+    against the original plan's room centres."""
     from layoutdsl.compile.generate import generate_geometry
-    from layoutdsl.evaluate.difference import building_centres
-    from layoutdsl.importer import import_building, read_building
     from layoutdsl.layout.difference import difference
 
-    spec, diagnostics = import_building(path)
-    if spec is None:
-        raise ValueError("import failed: " + "; ".join(d.message for d in diagnostics if d.is_error))
-    building, _ = read_building(path)
-    original = building_centres(building)
     spec = _with_aspect(spec, aspect)
     result = []
     for seed in range(seeds):
@@ -86,16 +80,18 @@ def main(argv: list[str] | None = None) -> int:
     for path in sorted(Path(args.folder).glob("*.xml")):
         if args.only and not any(fnmatch.fnmatch(path.stem, f"*{p}*") for p in args.only.split(",")):
             continue
-        from layoutdsl.importer import import_building
+        from layoutdsl.evaluate.difference import building_centres
+        from layoutdsl.importer import import_building, read_building
 
         spec, _ = import_building(path)
         if spec is None:
             emit(f"{path.stem:34} import failed")
             continue
+        original = building_centres(read_building(path)[0])
         w, h = spec.boundary.w, spec.boundary.h
         cells = []
         for aspect in aspects:
-            found = differences(path, args.seeds, aspect)
+            found = differences(spec, original, args.seeds, aspect)
             cells.append(f"{min(found):.2f} / {statistics.median(found):.2f} / {max(found):.2f}")
         emit(f"{path.stem[:34]:34} {len(spec.rooms):>5} {f'{w:.0f} x {h:.0f}':>12} {max(w, h) / min(w, h):>6.1f}"
              + "".join(f"{c:>20}" for c in cells))
