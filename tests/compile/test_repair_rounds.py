@@ -141,6 +141,18 @@ def test_a_repair_with_a_round_limit_gives_up_when_that_many_rounds_stretched():
     assert rects is None and len(rounds) == 1
 
 
+def test_a_round_limit_spares_a_geometry_near_a_layout_but_a_quick_try_does_not(monkeypatch):
+    # "near" raised above the pile's 46 m first round: the one-round limit lets it go on
+    monkeypatch.setattr(construct, "NEAR_DONE_M", 1e9)
+    rects, rounds = _repair_of_a_pile(max_rounds=1)
+    assert rects is not None and len(rounds) == 2 and rounds[-1] == 0
+    # a quick try keeps its rounds whatever it stretched (its tries are many and short)
+    monkeypatch.setattr(construct, "QUICK_FIRST_STRETCH_M", 1e9)
+    monkeypatch.setattr(construct, "QUICK_ROUNDS", 1)
+    rects, rounds = _repair_of_a_pile(quick=True)
+    assert rects is None and len(rounds) == 1
+
+
 def test_a_door_moves_to_the_l_rooms_box_a_round_brought_its_neighbour_to():
     # specs/l_corridor.lay: C0's long arm lies along the bottom, its second arm rises at the
     # right. R1 is drawn at the long arm, so its door goes there; a round that moved R1 next
