@@ -14,7 +14,7 @@ satellites split, with the construction's main thread waiting for these runs
 (construct._anneal_order "alone"): school_stjoseph_scatholichighschool (a 27-room block)
 constructed 3 of 4 seeds, against 0 of 4 with one satellites run and one whole-plan run at a
 time beside the greedy repairs; office_floor-1024x523 (14) 2 of 4, against 3 of 4 (runs of
-4M moves; see satellites.MAX_MOVES for the 2M-move runs compile makes now).
+4M moves; see satellites.CORE_MOVES_PER_PAIR for the runs compile makes now).
 """
 
 from __future__ import annotations

@@ -1539,7 +1539,7 @@ def _anneal_order(spec: Spec) -> str | None:
     runs' speed (a 4M-move run took about 37 s beside them, 20-30 s without): measured with
     `bench/generation.py --seeds 4`, 3 of 4 seeds constructed, 0 of 4 beside the greedy
     placement (layoutdsl.compile.anneal_runs); with runs of 2M moves, 6 of seeds 0-7
-    (satellites.MAX_MOVES)."""
+    (satellites.CORE_MOVES_PER_PAIR)."""
     blocks = cycle_blocks(spec)
     # numba is an optional dependency ('layoutdsl[anneal]'), looked for but not imported
     # here: importing it takes ~0.7 s, a share of a small variant's time limit (measured:

@@ -32,7 +32,7 @@ Measured (bench/results/satellites.txt): on school_stjoseph_scatholichighschool,
 whole-plan sequence-pair runs never came within 5 m of a layout, 11 of 16 runs of 4M moves
 end within 6 m (the repair's reach, construct.ANNEAL_REPAIR_M), 2 of them at 0, once the
 satellites' moves start warm (SATELLITES_TEMPERATURE); 3 of 8 of 2M. compile, 60 s, with
-both cores on runs of 2M moves (construct._anneal_order "alone", MAX_MOVES): the school's
+both cores on runs of 2M moves (construct._anneal_order "alone", CORE_MOVES_PER_PAIR): the school's
 seeds 0-7 constructed 6 of 8, the first layout after 22-37 s (0 of 4 seeds before). Plans
 without a block of generate.CORE_BLOCK_ROOMS are not split (see there).
 
@@ -67,33 +67,31 @@ from layoutdsl.compile.generate import RoomSizes, core_rooms, drawn_sides, room_
 from layoutdsl.layout.geometry import Rect
 from layoutdsl.syntax.ast import Spec
 
-MOVES_PER_ROOM = 40000
-MAX_MOVES = 2_000_000
-"""Moves of a run: this many per room (core and satellites), at most MAX_MOVES, the first
-CORE_ALONE of them on the core alone. With the satellites' moves warm
-(SATELLITES_TEMPERATURE), one run a seed: 2M moves ended 3 runs of 8 within 6 m on
-school_stjoseph_scatholichighschool at 16-23 s a run, 4M 11 of 16 at 27-43 s. In compile
-(bench/generation.py --seeds 8, both cores on these runs) the shorter runs fit two rounds into
-the construction's 48 s where the longer fit one: the school constructed 6 of 8 seeds, its
-first layout after 22-37 s (median 25.6 s), against 5 of 8 after 37-44 s at 4M;
-office_floor-1024x523 (3.04M moves before) 4 of 8 after 13-18 s, against 5 of 8 after
-20-43 s. Before the reheat, cold runs: with every move placing the satellites, 1M moves
-left 3 of 8 within 6 m at about 20 s a run; with the core alone first, at 15000 moves a room
-(1.7M) 0.5 alone 4 of 12 at 13 s, 0.7 3 of 12 at 10.4 s, 0.75 6 of 24 at 9.7 s, 0.8 4 of
-12 at 8.2 s (bench/results/satellites.txt). Eight seeds say little."""
+CORE_MOVES_PER_PAIR = 5000
+CORE_MAX_MOVES = 1_500_000
+SATELLITE_MOVES = 500_000
+"""A run's moves: first the core alone, this many per pair of core rooms (a sequence pair
+relates every pair), at most CORE_MAX_MOVES; then SATELLITE_MOVES with the satellites placed
+after every move and counted. Measured (bench/results/satellites.txt section 5, runs repaired
+as compile repairs them): school_stjoseph_scatholichighschool (27 core rooms, 351 pairs) needs
+the long core phase, with 1.5M core moves 5 of 10 runs repaired, 1.08M 1 of 10, 0.5M 0 of
+10; office_floor-1024x523 (14 core rooms, 91 pairs) does not, 0.5M core moves repairing 7
+of 20 runs at about 10 s a run against 2 of 10 at 13.5 s with 1.5M (the same 0.5M satellite
+moves both times). The school's runs are as before (2M moves, 1.5M of them the core's).
+
+Before: a run of 40000 moves a room, at most 2M, the first 3/4 on the core alone. With the
+satellites' moves warm (SATELLITES_TEMPERATURE), 2M moves ended 3 runs of 8 within 6 m on
+school_stjoseph_scatholichighschool at 16-23 s a run, 4M 11 of 16 at 27-43 s; in compile the
+shorter runs fit two rounds into the construction's 48 s where the longer fit one. Cold runs,
+before the reheat: with every move placing the satellites, 1M moves left 3 of 8 within 6 m at
+about 20 s a run; with the core alone first, at 15000 moves a room (1.7M) 0.5 alone 4 of 12 at
+13 s, 0.7 3 of 12 at 10.4 s, 0.75 6 of 24 at 9.7 s, 0.8 4 of 12 at 8.2 s. While everything
+still moves, the satellites' places say little and cost most of the time (the core alone takes
+about 3 microseconds a move, with its satellites 20)."""
 
 SATELLITE_SHARE = 0.5
 """Share of the moves that change a satellite (turn it, resize it, or move it to another
 side of its parent), times the satellites' share of the rooms."""
-
-CORE_ALONE = 0.75
-"""Share of a run's moves (the hot first ones) that anneal the core alone, its satellites
-neither moved nor placed; from there on they are placed after every move and counted. While
-everything still moves, the satellites' places say little and cost most of the time (the
-core alone takes about a microsecond a move, with its satellites 20). See MAX_MOVES; on
-office_floor-1024x523 (15000 moves a room, seeds 0-7) 2 runs of 8 within 6 m at 4.2 s a
-run, half alone 4 at 5 s, against 6 of 8 at 27 s with every move placing the satellites (1M
-moves)."""
 
 SATELLITES_TEMPERATURE = 0.02
 """The temperature (times the boundary's width plus height, as START_TEMPERATURE) at which the
@@ -203,8 +201,13 @@ class Satellites:
             extra_need=np.array([n for row in extras for _, n in row], dtype=np.float64),
             sibling_ptr=sibling_ptr, sibling_to=sibling_to)
 
+    def core_moves(self) -> int:
+        """Moves on the core alone (CORE_MOVES_PER_PAIR)."""
+        rooms = len(self.core.ids)
+        return min(CORE_MAX_MOVES, CORE_MOVES_PER_PAIR * rooms * (rooms - 1) // 2)
+
     def moves(self) -> int:
-        return min(MAX_MOVES, MOVES_PER_ROOM * len(self.ids))
+        return self.core_moves() + SATELLITE_MOVES
 
     def chain(self, kernel_seed: int, cancel: np.ndarray):
         """One run from a random sequence pair of the core (the kernel releases the GIL),
@@ -218,7 +221,7 @@ class Satellites:
             kernel_seed, self.moves(), START_TEMPERATURE * scale, END_TEMPERATURE * scale, cancel,
             self.parent, self.need, self.long_side, self.short_side, self.bounds, self.on_boundary, self.extra_ptr,
             self.extra_to, self.extra_need, self.sibling_ptr, self.sibling_to, share,
-            int(CORE_ALONE * self.moves()), SATELLITES_TEMPERATURE * scale)
+            self.core_moves(), SATELLITES_TEMPERATURE * scale)
 
     def geometry(self, result) -> tuple[dict[str, Rect], float]:
         """The rectangles of a run's best state, and its violation."""
