@@ -75,9 +75,10 @@ relates every pair), at most CORE_MAX_MOVES; then SATELLITE_MOVES with the satel
 after every move and counted. Measured (bench/results/satellites.txt section 5, runs repaired
 as compile repairs them): school_stjoseph_scatholichighschool (27 core rooms, 351 pairs) needs
 the long core phase, with 1.5M core moves 5 of 10 runs repaired, 1.08M 1 of 10, 0.5M 0 of
-10; office_floor-1024x523 (14 core rooms, 91 pairs) does not, 0.5M core moves repairing 7
-of 20 runs at about 10 s a run against 2 of 10 at 13.5 s with 1.5M (the same 0.5M satellite
-moves both times). The school's runs are as before (2M moves, 1.5M of them the core's).
+10; office_floor-1024x523 (14 core rooms, 91 pairs) does not, about 0.5M core moves
+repairing 8-10 of 40 runs (three probes) at 10-13 s a run against 2 of 10 at 13.5 s with 1.5M
+(the same 0.5M satellite moves each time): about 3 s less a run. The school's runs are as
+before (2M moves, 1.5M of them the core's).
 
 Before: a run of 40000 moves a room, at most 2M, the first 3/4 on the core alone. With the
 satellites' moves warm (SATELLITES_TEMPERATURE), 2M moves ended 3 runs of 8 within 6 m on
