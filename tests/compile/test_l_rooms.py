@@ -1,9 +1,9 @@
-"""specs/l_corridor.lay compiles, and its drawing and Stage bitmap show the L (issue 14).
+"""specs/l_corridor.lay compiles, and its drawing, Stage bitmap and 3D worlds show the L (issue 14).
 
-The checks read the written files (layout JSON, PNG, Stage world and bitmap, XML) and judge
-them with their own arithmetic: the corridor is two rectangles flush at a corner; the
-pixels along the line where its arms meet are corridor, not wall; just outside the L's
-inner corner is wall (an L, not its bounding box).
+The checks read the written files (layout JSON, PNG, Stage world and bitmap, MuJoCo and
+Gazebo worlds, XML) and judge them with their own arithmetic: the corridor is two rectangles
+flush at a corner; the pixels (or rays) along the line where its arms meet are corridor, not
+wall; just outside the L's inner corner is wall (an L, not its bounding box).
 """
 
 from __future__ import annotations
@@ -26,7 +26,8 @@ SPEC = ROOT / "specs" / "l_corridor.lay"
 @pytest.fixture(scope="module")
 def out(tmp_path_factory) -> Path:
     folder = tmp_path_factory.mktemp("l_corridor")
-    assert main(["compile", str(SPEC), "-o", str(folder), "-q", "--time-limit", "30"]) == 0
+    assert main(["compile", str(SPEC), "-o", str(folder), "-q", "--time-limit", "30",
+                 "--emit", "xml,png,world,map,mjcf,sdf"]) == 0
     return folder
 
 
@@ -124,6 +125,43 @@ def test_the_png_shows_the_l(out: Path) -> None:
     assert along.count(ROOM_TINTS["C"]) >= 7, f"the arms' meeting line is not corridor: {along}"
     half = layout.walldim / 2
     assert pixel(corner[0] + dx * half, corner[1] + dy * half) == WALL
+
+
+def test_the_3d_worlds_show_the_l(out: Path) -> None:
+    # MuJoCo loads the MJCF and casts rays down from above the walls; the SDF's wall boxes
+    # are read from its text: both must leave the arms' meeting line free and wall the
+    # L's inner corner
+    import mujoco
+    import numpy as np
+
+    layout, a, b = _corridor(out)
+    (p, q), corner, (dx, dy) = _join(a, b)
+    half = layout.walldim / 2
+    outside = (corner[0] + dx * half, corner[1] + dy * half)
+    model = mujoco.MjModel.from_xml_path(str(out / "l_corridor.mjcf.xml"))
+    data = mujoco.MjData(model)
+    mujoco.mj_forward(model, data)
+
+    def mujoco_wall(x: float, y: float) -> bool:
+        hit = np.zeros(1, dtype=np.int32)
+        distance = mujoco.mj_ray(model, data, np.array([x, y, 10.0]), np.array([0.0, 0.0, -1.0]), None, 1, -1, hit)
+        return distance >= 0 and model.geom(int(hit[0])).name.startswith("wall_")
+
+    boxes = []
+    for element in ET.parse(out / "l_corridor.sdf").getroot().iter("collision"):
+        if element.get("name", "").startswith("wall_"):
+            cx, cy = (float(v) for v in element.find("pose").text.split()[:2])
+            sx, sy = (float(v) for v in element.find("geometry/box/size").text.split()[:2])
+            boxes.append((cx - sx / 2, cy - sy / 2, cx + sx / 2, cy + sy / 2))
+    assert boxes
+
+    def sdf_wall(x: float, y: float) -> bool:
+        return any(x0 < x < x1 and y0 < y < y1 for x0, y0, x1, y1 in boxes)
+
+    for wall_at in (mujoco_wall, sdf_wall):
+        along = [wall_at(x, y) for x, y in _samples(p, q)]
+        assert not any(along), f"{wall_at.__name__}: wall between the arms of the L: {along}"
+        assert wall_at(*outside), f"{wall_at.__name__}: no wall at the L's inner corner"
 
 
 def test_the_xml_space_has_six_corners(out: Path) -> None:
