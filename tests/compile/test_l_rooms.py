@@ -27,7 +27,7 @@ SPEC = ROOT / "specs" / "l_corridor.lay"
 def out(tmp_path_factory) -> Path:
     folder = tmp_path_factory.mktemp("l_corridor")
     assert main(["compile", str(SPEC), "-o", str(folder), "-q", "--time-limit", "30",
-                 "--emit", "xml,png,world,map,mjcf,sdf"]) == 0
+                 "--emit", "xml,png,world,map,mjcf,sdf,gltf"]) == 0
     return folder
 
 
@@ -129,10 +129,11 @@ def test_the_png_shows_the_l(out: Path) -> None:
 
 def test_the_3d_worlds_show_the_l(out: Path) -> None:
     # MuJoCo loads the MJCF and casts rays down from above the walls; the SDF's wall boxes
-    # are read from its text: both must leave the arms' meeting line free and wall the
-    # L's inner corner
+    # are read from its text, the glTF's from the mesh trimesh loads: each must leave the
+    # arms' meeting line free and wall the L's inner corner
     import mujoco
     import numpy as np
+    import trimesh
 
     layout, a, b = _corridor(out)
     (p, q), corner, (dx, dy) = _join(a, b)
@@ -158,7 +159,20 @@ def test_the_3d_worlds_show_the_l(out: Path) -> None:
     def sdf_wall(x: float, y: float) -> bool:
         return any(x0 < x < x1 and y0 < y < y1 for x0, y0, x1, y1 in boxes)
 
-    for wall_at in (mujoco_wall, sdf_wall):
+    scene = trimesh.load(out / "l_corridor.glb", process=False)
+    transform, name = scene.graph["walls"]
+    mesh = scene.geometry[name].copy()
+    mesh.apply_transform(transform)
+    x, y, z = mesh.vertices.T  # glTF is y-up: back to the layout's frame, z up
+    # each wall a closed box of its own: eight vertices apiece, in the order written
+    corners = np.column_stack([x, -z, y]).reshape(-1, 8, 3)
+    lows, highs = corners.min(axis=1), corners.max(axis=1)
+    assert len(corners) == len(boxes) and (highs[:, 2] - lows[:, 2] > 1.0).all()
+
+    def gltf_wall(x: float, y: float) -> bool:
+        return bool(((lows[:, 0] < x) & (x < highs[:, 0]) & (lows[:, 1] < y) & (y < highs[:, 1])).any())
+
+    for wall_at in (mujoco_wall, sdf_wall, gltf_wall):
         along = [wall_at(x, y) for x, y in _samples(p, q)]
         assert not any(along), f"{wall_at.__name__}: wall between the arms of the L: {along}"
         assert wall_at(*outside), f"{wall_at.__name__}: no wall at the L's inner corner"
