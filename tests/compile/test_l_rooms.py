@@ -1,7 +1,7 @@
 """specs/l_corridor.lay compiles, and its drawing, Stage bitmap and 3D worlds show the L (issue 14).
 
-The checks read the written files (layout JSON, PNG, Stage world and bitmap, MuJoCo and
-Gazebo worlds, XML) and judge them with their own arithmetic: the corridor is two rectangles
+The checks read the written files (layout JSON, PNG, Stage world and bitmap, MuJoCo, Gazebo
+and glTF worlds, XML) and judge them with their own arithmetic: the corridor is two rectangles
 flush at a corner; the pixels (or rays) along the line where its arms meet are corridor, not
 wall; just outside the L's inner corner is wall (an L, not its bounding box).
 """
@@ -15,6 +15,7 @@ from pathlib import Path
 import pytest
 from PIL import Image
 
+from gltf_frame import walls_in_layout_frame
 from layoutdsl.cli import main
 from layoutdsl.emit.png import ROOM_TINTS, WALL, drawing
 from layoutdsl.layout import Layout
@@ -159,13 +160,9 @@ def test_the_3d_worlds_show_the_l(out: Path) -> None:
     def sdf_wall(x: float, y: float) -> bool:
         return any(x0 < x < x1 and y0 < y < y1 for x0, y0, x1, y1 in boxes)
 
-    scene = trimesh.load(out / "l_corridor.glb", process=False)
-    transform, name = scene.graph["walls"]
-    mesh = scene.geometry[name].copy()
-    mesh.apply_transform(transform)
-    x, y, z = mesh.vertices.T  # glTF is y-up: back to the layout's frame, z up
+    walls = walls_in_layout_frame(trimesh.load(out / "l_corridor.glb", process=False))
     # each wall a closed box of its own: eight vertices apiece, in the order written
-    corners = np.column_stack([x, -z, y]).reshape(-1, 8, 3)
+    corners = walls.vertices.reshape(-1, 8, 3)
     lows, highs = corners.min(axis=1), corners.max(axis=1)
     assert len(corners) == len(boxes) and (highs[:, 2] - lows[:, 2] > 1.0).all()
 

@@ -16,6 +16,7 @@ import pytest
 
 from _emit_support import load_case, planted_layouts, school_layout, HERE
 from _sim_support import LARGE_PLANS, large_layout
+from gltf_frame import walls_in_layout_frame
 from layoutdsl.emit import gltf
 from layoutdsl.emit.walls import wall_geometry
 from layoutdsl.layout import Layout
@@ -37,15 +38,6 @@ def _layout(name: str) -> Layout:
 def _reload(layout: Layout, wall_height: float = 2.5):
     data = gltf.render(layout, "plan", wall_height=wall_height)["plan.glb"]
     return trimesh.load(io.BytesIO(data), file_type="glb", process=False)
-
-
-def _walls_in_layout_frame(scene) -> trimesh.Trimesh:
-    """The walls mesh with its node transform applied, turned back to z-up (x, y, z) = (X, -Z, Y)."""
-    transform, name = scene.graph["walls"]
-    mesh = scene.geometry[name].copy()
-    mesh.apply_transform(transform)
-    x, y, z = mesh.vertices.T
-    return trimesh.Trimesh(np.column_stack([x, -z, y]), mesh.faces, process=False)
 
 
 def _scanline(segments: np.ndarray, grid: OccupancyGrid) -> np.ndarray:
@@ -100,7 +92,7 @@ def _door_width(open_cells: np.ndarray, portal, grid: OccupancyGrid) -> int:
 def test_mesh_slice_lies_on_the_map_walls(name: str) -> None:
     layout = _layout(name)
     grid = rasterize_layout(layout)
-    walls = _walls_in_layout_frame(_reload(layout))
+    walls = walls_in_layout_frame(_reload(layout))
     segments = trimesh.intersections.mesh_plane(walls, plane_normal=[0, 0, 1], plane_origin=[0, 0, 1.25])
     mesh_wall = _scanline(segments[:, :, :2], grid)
     free = ~grid.occupied
@@ -123,7 +115,7 @@ def test_mesh_slice_lies_on_the_map_walls(name: str) -> None:
 def test_each_wall_box_is_a_closed_solid(name: str) -> None:
     layout = _layout(name)
     geometry = wall_geometry(layout)
-    walls = _walls_in_layout_frame(_reload(layout))
+    walls = walls_in_layout_frame(_reload(layout))
     assert len(walls.faces) == 12 * len(geometry.boxes)
     owners = np.full(len(walls.vertices), -1)
     for index in range(len(geometry.boxes)):
