@@ -77,12 +77,12 @@ def main(argv: list[str] | None = None) -> int:
     heading = "".join(f"{'original' if a is None else f'aspect {a:g}':>20}" for a in aspects)
     emit(f"{'plan':34} {'rooms':>5} {'W x H':>12} {'aspect':>6}{heading}")
     emit(f"{'':34} {'':>5} {'':>12} {'':>6}" + f"{'min / med / max':>20}" * len(aspects))
+    from layoutdsl.evaluate.difference import building_centres
+    from layoutdsl.importer import import_building, read_building
+
     for path in sorted(Path(args.folder).glob("*.xml")):
         if args.only and not any(fnmatch.fnmatch(path.stem, f"*{p}*") for p in args.only.split(",")):
             continue
-        from layoutdsl.evaluate.difference import building_centres
-        from layoutdsl.importer import import_building, read_building
-
         spec, _ = import_building(path)
         if spec is None:
             emit(f"{path.stem:34} import failed")
