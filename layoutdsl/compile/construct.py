@@ -1522,7 +1522,9 @@ in 60 s."""
 ANNEAL_REPAIR_M = 6.0
 """Violation (metres, layoutdsl.compile.anneal) up to which an annealed geometry is worth
 its repair. Measured on office_OfficePlan: annealed geometries 2.2 m from a layout
-repaired in 0.5 s, 13.4 m stalled for 34 s; office_floor-1024x523 repaired from 2.3 m."""
+repaired in 0.5 s, 13.4 m stalled for 34 s; office_floor-1024x523 repaired from 2.3 m (by
+whole-plan runs; the core-and-satellites runs of a split plan have a nearer reach of their
+own, satellites.REACH_M, and runs beyond it never come here)."""
 
 
 def _anneal_order(spec: Spec) -> str | None:

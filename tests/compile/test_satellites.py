@@ -5,6 +5,7 @@ Geometry is checked here with plain arithmetic of its own, not with the annealer
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import time
 from pathlib import Path
@@ -13,11 +14,12 @@ import numpy as np
 import pytest
 
 from layoutdsl.api import load_spec
-from layoutdsl.compile import construct
+from layoutdsl.compile import construct, satellites as satellites_module
 from layoutdsl.compile.anneal_runs import AnnealingRuns
 from layoutdsl.compile.generate import room_graph
 from layoutdsl.compile.satellites import Satellites
 from layoutdsl.layout.verify import verify
+from layoutdsl.syntax.ast import Boundary
 
 from _specs import cycle_spec, ladder_spec, ring_block_spec, tree_spec
 
@@ -156,3 +158,47 @@ def test_a_plan_with_a_large_block_runs_satellites_on_every_worker_with_runs_ask
         assert runs.kind == "sequence pair" and runs.at_once == 1
     finally:
         runs.close()
+
+
+def _crowded():
+    """ring_block_spec's rooms (at least 120 m², at their least sizes) in a 9 m x 9 m
+    boundary: no run comes near a layout."""
+    return dataclasses.replace(ring_block_spec(), boundary=Boundary(9.0, 9.0))
+
+
+@pytest.fixture
+def short_runs(monkeypatch):
+    """Runs of 20k moves on the core alone, then 20k with the satellites (a fraction of a
+    second each)."""
+    monkeypatch.setattr(satellites_module, "CORE_MAX_MOVES", 20_000)
+    monkeypatch.setattr(satellites_module, "SATELLITE_MOVES", 20_000)
+
+
+def test_a_run_still_beyond_reach_at_the_checkpoint_stops_there(short_runs, monkeypatch):
+    """REACH_M at CHECKPOINT_SHARE of the moves with the satellites: a run farther from a
+    layout stops there, one within reach goes on to its last move."""
+    satellites = Satellites.of(_crowded())
+    checkpoint = 20_000 + int(satellites_module.CHECKPOINT_SHARE * 20_000)
+    violation, *_, made = satellites.chain(3, np.zeros(1, dtype=np.int64))
+    assert violation > satellites_module.REACH_M
+    assert made == checkpoint
+    assert not satellites.repairable(violation)
+    monkeypatch.setattr(satellites_module, "REACH_M", 1e9)  # every run within reach
+    violation, *_, made = satellites.chain(3, np.zeros(1, dtype=np.int64))
+    assert made == satellites.moves() == 40_000
+    assert satellites.repairable(violation)
+
+
+def test_runs_beyond_reach_give_the_construction_nothing_to_repair(short_runs, monkeypatch):
+    """AnnealingRuns drops a satellites run that ended beyond REACH_M: the construction
+    waits for the next run instead of repairing it."""
+    runs = AnnealingRuns(_crowded(), seed=0, deadline=None, workers=1)
+    try:
+        assert runs.wait(lambda violation: True, time.monotonic() + 1.5) is None
+        monkeypatch.setattr(satellites_module, "REACH_M", 1e9)
+        found = runs.wait(lambda violation: True, time.monotonic() + 10.0)
+    finally:
+        runs.close()
+    assert found is not None
+    geometry, violation, from_geometry = found
+    assert set(geometry) == {room.id for room in _crowded().rooms} and violation > 4.0  # beyond the default reach
