@@ -110,12 +110,14 @@ class AnnealingRuns:
                 kernel = self.arrays
             # a chain cut off returns its best state so far, which depends on the clock
             finished = None if self.cancel[0] else kernel.geometry(result)
+            # a satellites run beyond its reach is dropped: the next run, not a repair, follows
+            dropped = finished is not None and kind == "satellites" and not self.satellites.repairable(finished[1])
             if finished is not None and self.log is not None:
                 origin = "from a geometry" if start is not None else "from scratch"
                 self.log(f"annealing run done ({kind}, {origin}, {time.monotonic() - began:.1f} s): "
-                         f"{finished[1]:.2f} m from a layout" + self._dropped(kind, result, finished[1]))
-            if finished is not None and kind == "satellites" and not self.satellites.repairable(finished[1]):
-                finished = None  # too far to repair: the next run, not a repair, follows
+                         f"{finished[1]:.2f} m from a layout" + (self._dropped(result) if dropped else ""))
+            if dropped:
+                finished = None
             with self.condition:
                 if start is None:
                     self.random_busy -= 1
@@ -123,10 +125,8 @@ class AnnealingRuns:
                     self.done.append((*finished, start is not None))
                 self.condition.notify_all()
 
-    def _dropped(self, kind: str, result, violation: float) -> str:
-        """For the debug trace: why a satellites run gives nothing to repair."""
-        if kind != "satellites" or self.satellites.repairable(violation):
-            return ""
+    def _dropped(self, result) -> str:
+        """For the debug trace: where a satellites run beyond its reach stopped."""
         made, moves = result[-1], self.satellites.moves()
         stopped = f", stopped after {made / moves:.0%} of its moves" if made < moves else ""
         return f"{stopped}; dropped, beyond satellites.REACH_M"

@@ -192,11 +192,18 @@ def test_a_run_still_beyond_reach_at_the_checkpoint_stops_there(short_runs, monk
 def test_runs_beyond_reach_give_the_construction_nothing_to_repair(short_runs, monkeypatch):
     """AnnealingRuns drops a satellites run that ended beyond REACH_M: the construction
     waits for the next run instead of repairing it."""
-    runs = AnnealingRuns(_crowded(), seed=0, deadline=None, workers=1)
+    logged: list[str] = []
+    runs = AnnealingRuns(_crowded(), seed=0, deadline=None, workers=1, log=logged.append)
     try:
-        assert runs.wait(lambda violation: True, time.monotonic() + 1.5) is None
+        waited = time.monotonic() + 30.0
+        while len(logged) < 2 and time.monotonic() < waited:
+            time.sleep(0.05)
+        assert len(logged) >= 2
+        assert all(line.endswith("stopped after 80% of its moves; dropped, beyond satellites.REACH_M")
+                   for line in logged)
+        assert runs.pop_done() is None
         monkeypatch.setattr(satellites_module, "REACH_M", 1e9)
-        found = runs.wait(lambda violation: True, time.monotonic() + 10.0)
+        found = runs.wait(lambda violation: True, time.monotonic() + 30.0)
     finally:
         runs.close()
     assert found is not None
