@@ -149,30 +149,32 @@ def test_the_3d_worlds_show_the_l(out: Path) -> None:
         distance = mujoco.mj_ray(model, data, np.array([x, y, 10.0]), np.array([0.0, 0.0, -1.0]), None, 1, -1, hit)
         return distance >= 0 and model.geom(int(hit[0])).name.startswith("wall_")
 
-    boxes = []
+    def wall_in(boxes: np.ndarray):
+        """Whether a point lies strictly inside one of the (x0, y0, x1, y1) wall boxes."""
+        def wall_at(x: float, y: float) -> bool:
+            return bool(((boxes[:, 0] < x) & (x < boxes[:, 2]) & (boxes[:, 1] < y) & (y < boxes[:, 3])).any())
+        return wall_at
+
+    sdf_boxes = []
     for element in ET.parse(out / "l_corridor.sdf").getroot().iter("collision"):
         if element.get("name", "").startswith("wall_"):
             cx, cy = (float(v) for v in element.find("pose").text.split()[:2])
             sx, sy = (float(v) for v in element.find("geometry/box/size").text.split()[:2])
-            boxes.append((cx - sx / 2, cy - sy / 2, cx + sx / 2, cy + sy / 2))
-    assert boxes
-
-    def sdf_wall(x: float, y: float) -> bool:
-        return any(x0 < x < x1 and y0 < y < y1 for x0, y0, x1, y1 in boxes)
+            sdf_boxes.append((cx - sx / 2, cy - sy / 2, cx + sx / 2, cy + sy / 2))
+    assert sdf_boxes
+    sdf_wall = wall_in(np.array(sdf_boxes))
 
     walls = walls_in_layout_frame(trimesh.load(out / "l_corridor.glb", process=False))
     # each wall a closed box of its own: eight vertices apiece, in the order written
     corners = walls.vertices.reshape(-1, 8, 3)
     lows, highs = corners.min(axis=1), corners.max(axis=1)
-    assert len(corners) == len(boxes) and (highs[:, 2] - lows[:, 2] > 1.0).all()
+    assert len(corners) == len(sdf_boxes) and (highs[:, 2] - lows[:, 2] > 1.0).all()
+    gltf_wall = wall_in(np.column_stack([lows[:, :2], highs[:, :2]]))
 
-    def gltf_wall(x: float, y: float) -> bool:
-        return bool(((lows[:, 0] < x) & (x < highs[:, 0]) & (lows[:, 1] < y) & (y < highs[:, 1])).any())
-
-    for wall_at in (mujoco_wall, sdf_wall, gltf_wall):
+    for world, wall_at in (("mjcf", mujoco_wall), ("sdf", sdf_wall), ("gltf", gltf_wall)):
         along = [wall_at(x, y) for x, y in _samples(p, q)]
-        assert not any(along), f"{wall_at.__name__}: wall between the arms of the L: {along}"
-        assert wall_at(*outside), f"{wall_at.__name__}: no wall at the L's inner corner"
+        assert not any(along), f"{world}: wall between the arms of the L: {along}"
+        assert wall_at(*outside), f"{world}: no wall at the L's inner corner"
 
 
 def test_the_xml_space_has_six_corners(out: Path) -> None:
