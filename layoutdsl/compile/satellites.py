@@ -228,6 +228,7 @@ class Satellites:
         """One run from a random sequence pair of the core (the kernel releases the GIL),
         cut off when cancel[0] is set; geometry() reads its result."""
         core = self.core
+        core_moves = self.core_moves()
         scale = core.width + core.height
         share = SATELLITE_SHARE * len(self.parent) / len(self.ids)
         return _anneal_satellites(
@@ -236,8 +237,7 @@ class Satellites:
             kernel_seed, self.moves(), START_TEMPERATURE * scale, END_TEMPERATURE * scale, cancel,
             self.parent, self.need, self.long_side, self.short_side, self.bounds, self.on_boundary, self.extra_ptr,
             self.extra_to, self.extra_need, self.sibling_ptr, self.sibling_to, share,
-            self.core_moves(), SATELLITES_TEMPERATURE * scale,
-            self.core_moves() + int(CHECKPOINT_SHARE * SATELLITE_MOVES), REACH_M)
+            core_moves, SATELLITES_TEMPERATURE * scale, core_moves + int(CHECKPOINT_SHARE * SATELLITE_MOVES), REACH_M)
 
     @staticmethod
     def repairable(violation: float) -> bool:
