@@ -209,3 +209,30 @@ def test_runs_beyond_reach_give_the_construction_nothing_to_repair(short_runs, m
     assert found is not None
     geometry, violation, from_geometry = found
     assert set(geometry) == {room.id for room in _crowded().rooms} and violation > 4.0  # beyond the default reach
+
+
+def _busy():
+    """ring_block_spec with three more rooms hung off each ring room (42 satellites) in a
+    boundary they barely fit: satellites in one another's way all run long."""
+    from _specs import adjacent, room
+
+    spec = ring_block_spec()
+    hung = [room(f"S{i}_{j}", 3.0, 2.5) for i in range(12) for j in range(3)]
+    doors = [adjacent(f"K{i}", f"S{i}_{j}") for i in range(12) for j in range(3)]
+    return dataclasses.replace(spec, rooms=spec.rooms + tuple(hung), adjacencies=spec.adjacencies + tuple(doors),
+                               boundary=Boundary(24.0, 24.0))
+
+
+@pytest.mark.parametrize("make_spec", [ring_block_spec, _crowded, _busy])
+def test_keeping_undisturbed_satellites_in_place_changes_no_run(short_runs, monkeypatch, make_spec):
+    """INCREMENTAL_PLACEMENT only saves work: each run, move for move, ends in the same
+    state as when every satellite is placed again after every move."""
+    satellites = Satellites.of(make_spec())
+    results = {}
+    for incremental in (True, False):
+        monkeypatch.setattr(satellites_module, "INCREMENTAL_PLACEMENT", incremental)
+        results[incremental] = [satellites.chain(seed, np.zeros(1, dtype=np.int64)) for seed in range(3)]
+    for kept, placed_again in zip(results[True], results[False]):
+        assert kept[0] == placed_again[0] and kept[5] == placed_again[5]
+        for a, b in zip(kept[1:5], placed_again[1:5]):
+            assert np.array_equal(a, b)
