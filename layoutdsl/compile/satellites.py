@@ -119,6 +119,19 @@ the satellites was a quarter to a third of each one's time. Of the runs ending 4
 a layout (13 of the office's, none of the school's), the 7 of seeds 0-19 were each repaired
 as compile repairs them: none repaired, each repair taking 1.2-9.5 s of a core."""
 
+SETTLED_SHARE = 0.8
+"""A run ends, and hands its best state to the repair, when this share of its moves with the
+satellites is made: the rest of the cooling no longer changes where a run stands. Measured
+(bench/results/satellites.txt section 6's traces, the best at every 5 %): of the 80 runs,
+the 25 that ended within 4 m of a layout without meeting every door by 80 % stood within
+0.12 m of their end there, but for two (office seeds 15 and 39: 3.66 -> 3.36 and 3.30 ->
+2.20 m; none of the office's runs that ended 1.2-3.9 m away repaired, seeds 1, 2, 12, 15
+and 18 here and compile seed 0's third and fourth runs). The two that met every
+door only after 80 % (office seed 13, school seed 12) were 0.02 m from a layout there, and
+school seed 8, which ended at 0.02 m, repaired. What it saves is the last fifth of the
+moves with the satellites of every run that does not meet every door (one that does stops
+there)."""
+
 INCREMENTAL_PLACEMENT = True
 """After a move, a satellite that nothing near it disturbed keeps its place instead of being
 placed again (_undisturbed). The runs are the same, move for move, either way (a test holds
@@ -247,7 +260,7 @@ class Satellites:
             self.parent, self.need, self.long_side, self.short_side, self.bounds, self.on_boundary, self.extra_ptr,
             self.extra_to, self.extra_need, self.sibling_ptr, self.sibling_to, share,
             core_moves, SATELLITES_TEMPERATURE * scale, core_moves + int(CHECKPOINT_SHARE * SATELLITE_MOVES), REACH_M,
-            INCREMENTAL_PLACEMENT)
+            core_moves + int(SETTLED_SHARE * SATELLITE_MOVES), INCREMENTAL_PLACEMENT)
 
     @staticmethod
     def repairable(violation: float) -> bool:
@@ -590,7 +603,7 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
                        sat_drawn_long, sat_drawn_short, sat_bounds, sat_on_boundary, extra_ptr, extra_to,
                        extra_need,
                        sibling_ptr, sibling_to, satellite_share, core_alone_until, t_satellites, checkpoint,
-                       reach, incremental):
+                       reach, last_step, incremental):
     np.random.seed(seed)
     n = drawn_long.shape[0]
     ns = parent.shape[0]
@@ -654,6 +667,9 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
         if step == checkpoint and best_violation > reach:
             made = step
             break  # still far from a layout: such runs were never repaired (REACH_M)
+        if step == last_step:
+            made = step
+            break  # settled: the best state no longer changes (SETTLED_SHARE)
         core_alone = step < core_alone_until
         if core_alone:
             temperature = t_start * ratio ** (step / moves)

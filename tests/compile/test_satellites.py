@@ -176,7 +176,8 @@ def short_runs(monkeypatch):
 
 def test_a_run_still_beyond_reach_at_the_checkpoint_stops_there(short_runs, monkeypatch):
     """REACH_M at CHECKPOINT_SHARE of the moves with the satellites: a run farther from a
-    layout stops there, one within reach goes on to its last move."""
+    layout stops there, one within reach goes on to SETTLED_SHARE of them (or, with that
+    share 1, to its last move)."""
     satellites = Satellites.of(_crowded())
     checkpoint = 20_000 + int(satellites_module.CHECKPOINT_SHARE * 20_000)
     violation, *_, made = satellites.chain(3, np.zeros(1, dtype=np.int64))
@@ -185,8 +186,12 @@ def test_a_run_still_beyond_reach_at_the_checkpoint_stops_there(short_runs, monk
     assert not satellites.repairable(violation)
     monkeypatch.setattr(satellites_module, "REACH_M", 1e9)  # every run within reach
     violation, *_, made = satellites.chain(3, np.zeros(1, dtype=np.int64))
-    assert made == satellites.moves() == 40_000
+    assert violation > 0.0 and made == 20_000 + int(satellites_module.SETTLED_SHARE * 20_000) < 40_000
     assert satellites.repairable(violation)
+    monkeypatch.setattr(satellites_module, "SETTLED_SHARE", 1.0)
+    settled_later, *_, made = satellites.chain(3, np.zeros(1, dtype=np.int64))
+    assert made == satellites.moves() == 40_000
+    assert settled_later <= violation  # the same run, longer: its best can only be as good
 
 
 def test_runs_beyond_reach_give_the_construction_nothing_to_repair(short_runs, monkeypatch):
