@@ -842,6 +842,7 @@ def _repair(
     quick: bool = False,
     rebox: Callable[[dict[str, Rect]], _Problem] | None = None,
     max_rounds: int | None = None,
+    round_seconds: float | None = None,
 ) -> dict[str, Rect] | None:
     """Relations from the geometry, repaired round by round until they admit a layout.
 
@@ -857,6 +858,7 @@ def _repair(
     its boxes nearest their neighbours in the given rectangles; after each stretched round, a
     door the round brought nearer the L's other box moves to it (_reboxed). `max_rounds`:
     give the geometry up when this many rounds left pairs stretched (ANNEALED_ROUNDS).
+    `round_seconds`: each round's MIP stops after this long (ANNEALED_ROUND_SECONDS).
     """
     options = _first_options(problem, geometry, free_defects)
     start: _Outcome | None = None
@@ -879,6 +881,8 @@ def _repair(
         seconds = min(left, 1.0 + 0.25 * left)
         if quick:
             seconds = min(seconds, QUICK_ROUND_SECONDS)
+        if round_seconds is not None:
+            seconds = min(seconds, round_seconds)
         outcome = _solve_model(problem, geometry, options, mode="repair", seconds=seconds, seed=seed,
                                orientations=orientations, turnable=frozenset(turnable),
                                start=start, feasibility_emphasis=stalls > 0, local=local)
@@ -1169,13 +1173,15 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
         _debug(f"geometry {index} ({kind}): {share:.1f}s")
         repaired += 1
         # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
+        # an annealed geometry of a plan whose runs take every core, with more coming
+        runs_alone = kind == "annealed" and annealing is not None and annealing.order == "alone"
         rects = _repair(candidate_problem, geometry, time.monotonic() + share, seed,
                         max_stalls=MAX_STALLS if kind in ("hints", "annealed") else GRAPH_MAX_STALLS,
                         free_defects=kind == "generated", local=kind == "hints",
                         give_way=_give_way(annealing, kind), quick=quick and kind == "generated",
                         rebox=rebox if spec.arms and kind == "hints" else None,
-                        max_rounds=(ANNEALED_ROUNDS if kind == "annealed" and annealing is not None
-                                    and annealing.order == "alone" else None))
+                        max_rounds=ANNEALED_ROUNDS if runs_alone else None,
+                        round_seconds=ANNEALED_ROUND_SECONDS if runs_alone else None)
         if rects is not None:
             return rects
         if annealing is not None and kind in ("generated", "graph"):
@@ -1236,6 +1242,14 @@ def _in_turn(candidates: list, annealing: _Annealing | None):
 SHRINK_ORDER: tuple[bool | float, ...] = (False, True)
 """Hint geometries in the order tried: the original boxes, then boxes shrunk to target."""
 
+
+ANNEALED_ROUND_SECONDS = 1.5
+"""...and each of its rounds' MIPs stops after this long. Measured on the annealed geometries
+within satellites.REACH_M of a layout of seeds 0-19 (office_floor-1024x523) and 0-11
+(school_stjoseph_scatholichighschool), each repaired alone as compile repairs it: the 8 that
+repaired did so in rounds of 0.13-0.54 s, while the 4 that did not held the construction for
+0.9-4.1 s, their second round 0.8-3.8 s. In compile those rounds run beside two annealing
+runs, and every second they take slows the runs that come next."""
 
 ANNEALED_ROUNDS = 2
 """Rounds after which the repair of an annealed geometry of a split plan (_anneal_order

@@ -103,6 +103,8 @@ def _repair_of_a_pile(**kwargs):
         if kw.get("mode") == "repair":
             if kwargs.get("quick"):
                 assert kw["seconds"] <= construct.QUICK_ROUND_SECONDS
+            if kwargs.get("round_seconds") is not None:
+                assert kw["seconds"] <= kwargs["round_seconds"]
             if outcome is not None:
                 rounds.append(sum(outcome.stretched.values()))
         return outcome
@@ -205,3 +207,9 @@ def test_a_round_stretched_by_a_micrometre_goes_to_the_final_model(monkeypatch):
     monkeypatch.setattr(construct, "STRETCH_NOISE_M", 1e-6)
     rects, rounds = _repair_of_a_pile(max_rounds=2)
     assert rects is None and len(rounds) > 2 and all(r == 2e-6 for r in rounds[1:])
+
+
+def test_a_round_limit_in_seconds_stops_each_rounds_mip_and_the_pile_still_repairs():
+    # the pile's two rounds each solve well within a second
+    rects, rounds = _repair_of_a_pile(max_rounds=2, round_seconds=1.0)
+    assert rects is not None and len(rounds) == 2 and rounds[-1] == 0
