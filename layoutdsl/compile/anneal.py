@@ -32,7 +32,7 @@ cycles it was built for, where a run ends depends mostly on its seed (office_Off
 runs: 1.7 m to 26.7 m after ~10 s). Started from a greedy placement the construction's repair
 gave up on, a short cool run untangles it far more often (FROM_GEOMETRY_TEMPERATURE). So
 `compile` anneals every plan with cycles beside its greedy placement
-(layoutdsl.compile.construct._Annealing): runs go on the cores the repairs leave
+(layoutdsl.compile.construct.Annealing): runs go on the cores the repairs leave
 (layoutdsl.compile.anneal_runs), and a run that ends within a few metres of a layout is
 repaired next. That constructs
 office_OfficePlan at seeds 0-3 and school_RomainRolland1 in ~5 s (38 s greedy alone);

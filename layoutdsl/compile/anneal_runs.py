@@ -1,6 +1,6 @@
 """Annealing runs on worker threads beside the construction's repairs (issue 11).
 
-The construction (layoutdsl.compile.construct._Annealing) repairs greedy geometries on one
+The construction (layoutdsl.compile.construct.Annealing) repairs greedy geometries on one
 core while SCIP holds it; the annealing kernels release the GIL, so runs go on beside it.
 A plan with a cycle block of generate.CORE_BLOCK_ROOMS rooms or more (one the satellites
 split) runs the core-and-satellites annealer (layoutdsl.compile.satellites) from scratch, on

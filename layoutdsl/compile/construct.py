@@ -439,7 +439,7 @@ def _solve_active(
                            "minimize")
     if start is not None:
         _add_start(model, start, options)
-    # without the GIL: an annealing run beside the construction (_Annealing) needs it to
+    # without the GIL: an annealing run beside the construction (Annealing) needs it to
     # enter and leave its kernel, and SCIP would otherwise hold it for the whole solve
     model.optimizeNogil()
     status = model.getStatus()
@@ -1071,6 +1071,7 @@ def construct_start(
     try_seconds: float | None = None,
     choices: int = TOP_CHOICES,
     quick: bool = False,
+    annealing: Annealing | None = None,
 ) -> dict[str, Rect] | None:
     """Rectangles (x, y, w, h) satisfying every hard constraint of the spec, or None.
 
@@ -1081,7 +1082,7 @@ def construct_start(
     variants) perturbs the hints from `seed`; the graph geometries are always drawn from it.
     `hanging` (a part of a larger spec, such as a cycle block) is the area of the rooms that
     hang off each room outside the part: the part leaves them space. `anneal`: a spec with
-    cycles also tries annealed geometries, computed beside the others (_Annealing); a cycle
+    cycles also tries annealed geometries, computed beside the others (Annealing); a cycle
     block solved as a template does without, its greedy tries and ladder drawing being
     quicker for a few rooms. `spare_cores` off (every core already runs a construction, as
     `compile --variants` does): only the plans the greedy placement never constructs anneal.
@@ -1090,8 +1091,12 @@ def construct_start(
     `try_seconds`: the most any one geometry's repair may take (else a share of the time left).
     `choices`: the greedy placement's choices per room (layoutdsl.compile.generate.TOP_CHOICES).
     `quick`: each generated geometry's repair gives up early when it looks stuck (_repair).
+    `annealing`: this construction's annealing, started earlier (start_annealing); the
+    construction takes it over and closes it.
     """
     if spec.boundary is None or not spec.rooms:
+        if annealing is not None:
+            annealing.close()
         return None
     if deadline is None:
         deadline = time.monotonic() + DEFAULT_SECONDS
@@ -1112,7 +1117,13 @@ def construct_start(
         # measured on school_wilbraham, `--throughput` with 2 workers on 2 cores: 10
         # variants a minute annealing beside the repairs, 14 without
         order = None
-    annealing = _Annealing(drawn, seed, deadline, order) if order else None
+    if annealing is not None and (annealing.order != order or annealing.seed != seed):
+        annealing.close()  # started for another construction than this one
+        annealing = None
+    if annealing is not None:
+        annealing.deadline = deadline
+    elif order:
+        annealing = Annealing(drawn, seed, deadline, order)
     candidates = _seed_geometries(drawn, rng, randomize, use_hints, templates, choices)
     try:
         return _first_repaired(spec, problem, candidates, deadline, seed, rng, annealing, max_geometries,
@@ -1123,7 +1134,7 @@ def construct_start(
 
 
 def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, seed: int,
-                    rng: random.Random, annealing: _Annealing | None,
+                    rng: random.Random, annealing: Annealing | None,
                     max_geometries: int | None = None,
                     try_seconds: float | None = None,
                     quick: bool = False) -> dict[str, Rect] | None:
@@ -1191,7 +1202,7 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
     return None
 
 
-def _give_way(annealing: _Annealing | None, kind: str) -> Callable[[], bool] | None:
+def _give_way(annealing: Annealing | None, kind: str) -> Callable[[], bool] | None:
     """When the repair of a `kind` geometry gives up for an annealed one that is done: a
     greedy one for any close enough to a layout, an annealed one for one far nearer (the
     hints never)."""
@@ -1205,7 +1216,7 @@ def _give_way(annealing: _Annealing | None, kind: str) -> Callable[[], bool] | N
     return None
 
 
-def _in_turn(candidates: list, annealing: _Annealing | None):
+def _in_turn(candidates: list, annealing: Annealing | None):
     """(kind, maker, last) of each seed geometry to try: an annealed geometry whenever a run
     close enough to a layout is done, else the next of `candidates`; when those are used up,
     or for an annealing "alone" (_anneal_order), annealed geometries as they come. The hints'
@@ -1506,7 +1517,7 @@ TEMPLATE_RESOLVE_FACTOR = 2.0
 def _seed_geometries(spec: Spec, rng: random.Random, randomize: bool, use_hints: bool = True,
                      templates: _TemplateSets | None = None, choices: int = TOP_CHOICES):
     """(kind, maker) of each seed geometry to try, best first; each is built when needed.
-    Annealed geometries (_Annealing) join them as they come (_in_turn)."""
+    Annealed geometries (Annealing) join them as they come (_in_turn)."""
     has_hints = use_hints and hint_geometry(spec) is not None
     makers = []
     if has_hints and randomize:
@@ -1608,7 +1619,22 @@ from their first greedy geometry in 1-2 s, and annealing beside them on the same
 would slow them down."""
 
 
-class _Annealing:
+def start_annealing(spec: Spec, seed: int, deadline: float) -> Annealing | None:
+    """The annealing that construct_start(spec, seed=seed) would start at once (a plan of an
+    AT_ONCE_ORDERS order without hints), started now, for a caller with other work to do
+    first: the compile pipeline builds and probes the thesis' model (1-2 s on a 76-room plan)
+    meanwhile. Its runs are those the construction would start, only sooner. None for any
+    other spec. Hand it to construct_start, or close it."""
+    drawn = lshape.seeds_spec(spec)
+    if spec.boundary is None or not spec.rooms or hint_geometry(drawn) is not None:
+        return None
+    order = _anneal_order(drawn)
+    if order not in AT_ONCE_ORDERS:
+        return None
+    return Annealing(drawn, seed, deadline, order)
+
+
+class Annealing:
     """Annealed seed geometries for one construction, computed on the spare cores.
 
     Greedy geometries are repaired on one core while SCIP holds it; an annealing chain runs

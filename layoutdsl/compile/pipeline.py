@@ -13,10 +13,10 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-
+from functools import partial
 
 from layoutdsl.compile import explain, lshape
-from layoutdsl.compile.construct import construct_start
+from layoutdsl.compile.construct import Annealing, construct_start, start_annealing
 from layoutdsl.syntax.ast import Spec
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.layout import Layout, SolveInfo, round_layout_number
@@ -95,9 +95,12 @@ class CompileResult:
     outcome: SolveOutcome | None = None
 
 
-def default_start_provider(spec: Spec, options: SolveOptions) -> dict[str, Rect] | None:
-    """The first-feasible construction of issue 6 (layoutdsl.compile.construct)."""
-    return construct_start(spec, seed=options.seed, deadline=time.monotonic() + options.time_limit)
+def default_start_provider(spec: Spec, options: SolveOptions,
+                           annealing: Annealing | None = None) -> dict[str, Rect] | None:
+    """The first-feasible construction of issue 6 (layoutdsl.compile.construct), taking over
+    `annealing` when one was started for it (construct.start_annealing)."""
+    return construct_start(spec, seed=options.seed, deadline=time.monotonic() + options.time_limit,
+                           annealing=annealing)
 
 
 def compile_from_start(
@@ -135,16 +138,27 @@ def compile_from_start(
     checked = (_verified_start(spec, rects_start)
                if options.strategy != "thesis" and not options.search and rects_start is not None else None)
     settle = checked is not None and checked[0] is not None
-    t0 = time.monotonic()
-    model = build_model(spec, formulation=formulation, defer_separations=settle)
-    timings["build"] = time.monotonic() - t0
-    if options.strategy != "thesis" and rects_start is None:
-        probe = _presolve_probe(model, options, timings)
-        if probe.status == "infeasible":
-            return _no_layout(spec, options, probe, [], explain_infeasible, timings, began)
-        rects_start = _provided_start(spec, options, start_provider, timings)
-        if rects_start is None and no_start_fallback is not None:
-            return _run_fallback(spec, options, deadline, progress, no_start_fallback)
+    constructing = options.strategy != "thesis" and rects_start is None
+    # the construction's annealing runs need no model: they start while it is built and
+    # probed (1-2 s on a 76-room plan), on the cores that work leaves
+    annealing = start_annealing(spec, options.seed, deadline) if constructing and start_provider is None else None
+    try:
+        t0 = time.monotonic()
+        model = build_model(spec, formulation=formulation, defer_separations=settle)
+        timings["build"] = time.monotonic() - t0
+        if constructing:
+            probe = _presolve_probe(model, options, timings)
+            if probe.status == "infeasible":
+                return _no_layout(spec, options, probe, [], explain_infeasible, timings, began)
+            if annealing is not None:
+                # the construction takes the annealing over, and closes it
+                start_provider, annealing = partial(default_start_provider, annealing=annealing), None
+            rects_start = _provided_start(spec, options, start_provider, timings)
+            if rects_start is None and no_start_fallback is not None:
+                return _run_fallback(spec, options, deadline, progress, no_start_fallback)
+    finally:
+        if annealing is not None:
+            annealing.close()
     rects_start, method = checked if checked is not None else _verified_start(spec, rects_start)
 
     polished: dict[str, Rect] | None = None

@@ -304,7 +304,7 @@ def test_the_finished_run_nearest_a_layout_is_taken_first():
 def test_an_annealed_repair_gives_way_only_to_a_far_nearer_run():
     from layoutdsl.compile import construct
 
-    annealing = construct._Annealing.__new__(construct._Annealing)
+    annealing = construct.Annealing.__new__(construct.Annealing)
     annealing.runs = AnnealingRuns(_office(), seed=0, deadline=None, workers=0)
     try:
         annealing.runs.done = [({}, 0.9, False)]

@@ -241,3 +241,57 @@ def test_keeping_undisturbed_satellites_in_place_changes_no_run(short_runs, monk
         assert kept[0] == placed_again[0] and kept[5] == placed_again[5]
         for a, b in zip(kept[1:5], placed_again[1:5]):
             assert np.array_equal(a, b)
+
+
+def test_a_split_plans_runs_start_before_the_model_is_built_and_the_construction_takes_them_over(
+        short_runs, monkeypatch):
+    """compile starts the construction's annealing (construct.start_annealing) before it
+    builds and probes the thesis' model; the construction then uses that annealing, and
+    starts none of its own."""
+    from layoutdsl.compile import pipeline
+    from layoutdsl.solve import SolveOptions
+
+    made: list[construct.Annealing] = []
+    init = construct.Annealing.__init__
+
+    def counted(self, *args, **kwargs):
+        made.append(self)
+        init(self, *args, **kwargs)
+
+    monkeypatch.setattr(construct.Annealing, "__init__", counted)
+    build = pipeline.build_model
+    running_at_build: list[bool] = []
+
+    def build_model(*args, **kwargs):
+        running_at_build.append(len(made) == 1 and made[0].order == "alone" and not made[0].closed)
+        return build(*args, **kwargs)
+
+    monkeypatch.setattr(pipeline, "build_model", build_model)
+    spec = ring_block_spec()
+    result = pipeline.compile_from_start(spec, SolveOptions(time_limit=20, seed=0, quiet=True))
+    assert running_at_build == [True]
+    assert len(made) == 1 and made[0].closed
+    assert result.layout is not None and verify(spec, result.layout) == []
+
+
+def test_an_infeasible_split_plan_closes_the_runs_started_for_it(monkeypatch):
+    """A spec whose probe proves it infeasible (rooms wider than the boundary) ends with the
+    annealing started for it closed and its threads gone."""
+    from layoutdsl.compile import pipeline
+    from layoutdsl.solve import SolveOptions
+
+    started: list = []
+    start = pipeline.start_annealing
+
+    def recorded(*args, **kwargs):
+        started.append(start(*args, **kwargs))
+        return started[-1]
+
+    monkeypatch.setattr(pipeline, "start_annealing", recorded)
+    spec = dataclasses.replace(ring_block_spec(), boundary=Boundary(2.0, 200.0))
+    result = pipeline.compile_from_start(spec, SolveOptions(time_limit=20, seed=0, quiet=True),
+                                         explain_infeasible=False)
+    assert result.status == "infeasible"
+    assert len(started) == 1 and started[0] is not None and started[0].closed
+    runs = started[0].runs
+    assert runs is None or not any(thread.is_alive() for thread in runs.threads)
