@@ -149,6 +149,9 @@ def compile_from_start(
         if constructing:
             probe = _presolve_probe(model, options, timings)
             if probe.status == "infeasible":
+                if annealing is not None:
+                    annealing.close()  # before the explanation, which takes seconds of its own
+                    annealing = None
                 return _no_layout(spec, options, probe, [], explain_infeasible, timings, began)
             if annealing is not None:
                 # the construction takes the annealing over, and closes it

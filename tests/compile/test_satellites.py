@@ -275,8 +275,8 @@ def test_a_split_plans_runs_start_before_the_model_is_built_and_the_construction
 
 
 def test_an_infeasible_split_plan_closes_the_runs_started_for_it(monkeypatch):
-    """A spec whose probe proves it infeasible (rooms wider than the boundary) ends with the
-    annealing started for it closed and its threads gone."""
+    """A spec whose probe proves it infeasible (rooms wider than the boundary) has the
+    annealing started for it closed before the infeasibility is explained, its threads gone."""
     from layoutdsl.compile import pipeline
     from layoutdsl.solve import SolveOptions
 
@@ -288,10 +288,18 @@ def test_an_infeasible_split_plan_closes_the_runs_started_for_it(monkeypatch):
         return started[-1]
 
     monkeypatch.setattr(pipeline, "start_annealing", recorded)
+    explain = pipeline._no_layout
+    closed_before_explaining: list[bool] = []
+
+    def no_layout(*args, **kwargs):
+        closed_before_explaining.append(started[0].closed)
+        return explain(*args, **kwargs)
+
+    monkeypatch.setattr(pipeline, "_no_layout", no_layout)
     spec = dataclasses.replace(ring_block_spec(), boundary=Boundary(2.0, 200.0))
     result = pipeline.compile_from_start(spec, SolveOptions(time_limit=20, seed=0, quiet=True),
                                          explain_infeasible=False)
-    assert result.status == "infeasible"
+    assert result.status == "infeasible" and closed_before_explaining == [True]
     assert len(started) == 1 and started[0] is not None and started[0].closed
     runs = started[0].runs
     assert runs is None or not any(thread.is_alive() for thread in runs.threads)
