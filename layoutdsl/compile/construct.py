@@ -888,12 +888,11 @@ def _repair(
                                start=start, feasibility_emphasis=stalls > 0, local=local)
         if outcome is None:
             return None
-        if not outcome.stretched:
-            return _final_layout(problem, geometry, outcome, deadline, seed, local)
-        if max(outcome.stretched.values()) < STRETCH_NOISE_M:
-            # a micrometre short: the SAFETY margins of a tight chain of rooms, not a conflict
+        if max(outcome.stretched.values(), default=0.0) < STRETCH_NOISE_M:
+            # none stretched, or a micrometre short: the SAFETY margins of a tight chain of
+            # rooms, not a conflict (then, if the final model rejects it, the repair goes on)
             rects = _final_layout(problem, geometry, outcome, deadline, seed, local)
-            if rects is not None:
+            if rects is not None or not outcome.stretched:
                 return rects
         _debug(f"  round {round_index}: {len(outcome.stretched)} stretched, "
                f"total {sum(outcome.stretched.values()):.2f} m: "
@@ -1108,15 +1107,7 @@ def construct_start(
     # the graph geometries that follow the hints' get the cycle blocks solved too (lazily:
     # not at all when a hint geometry constructs)
     templates = _TemplateSets(drawn, seed, deadline, hanging or {})
-    order = _anneal_order(drawn) if anneal else None
-    if order in AT_ONCE_ORDERS and has_hints:
-        # the hints construct most plans in well under a second: no core is taken from them
-        # before ANNEAL_DELAY or their first failure
-        order = "beside"
-    if order == "beside" and not spare_cores:
-        # measured on school_wilbraham, `--throughput` with 2 workers on 2 cores: 10
-        # variants a minute annealing beside the repairs, 14 without
-        order = None
+    order = _construction_order(drawn, has_hints, anneal, spare_cores)
     if annealing is not None and (annealing.order != order or annealing.seed != seed):
         annealing.close()  # started for another construction than this one
         annealing = None
@@ -1183,9 +1174,9 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
             share = min(share, try_seconds)
         _debug(f"geometry {index} ({kind}): {share:.1f}s")
         repaired += 1
-        # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
         # an annealed geometry of a plan whose runs take every core, with more coming
         runs_alone = kind == "annealed" and annealing is not None and annealing.order == "alone"
+        # a stalled graph geometry is given up sooner: a fresh draw is cheaper (measured)
         rects = _repair(candidate_problem, geometry, time.monotonic() + share, seed,
                         max_stalls=MAX_STALLS if kind in ("hints", "annealed") else GRAPH_MAX_STALLS,
                         free_defects=kind == "generated", local=kind == "hints",
@@ -1619,19 +1610,32 @@ from their first greedy geometry in 1-2 s, and annealing beside them on the same
 would slow them down."""
 
 
+def _construction_order(drawn: Spec, has_hints: bool, anneal: bool = True, spare_cores: bool = True) -> str | None:
+    """Where a construction of `drawn` (lshape.seeds_spec) puts its annealed geometries:
+    _anneal_order, as construct_start's arguments and the spec's hints leave it."""
+    order = _anneal_order(drawn) if anneal else None
+    if order in AT_ONCE_ORDERS and has_hints:
+        # the hints construct most plans in well under a second: no core is taken from them
+        # before ANNEAL_DELAY or their first failure
+        order = "beside"
+    if order == "beside" and not spare_cores:
+        # measured on school_wilbraham, `--throughput` with 2 workers on 2 cores: 10
+        # variants a minute annealing beside the repairs, 14 without
+        order = None
+    return order
+
+
 def start_annealing(spec: Spec, seed: int, deadline: float) -> Annealing | None:
     """The annealing that construct_start(spec, seed=seed) would start at once (a plan of an
     AT_ONCE_ORDERS order without hints), started now, for a caller with other work to do
     first: the compile pipeline builds and probes the thesis' model (1-2 s on a 76-room plan)
     meanwhile. Its runs are those the construction would start, only sooner. None for any
     other spec. Hand it to construct_start, or close it."""
+    if spec.boundary is None or not spec.rooms:
+        return None
     drawn = lshape.seeds_spec(spec)
-    if spec.boundary is None or not spec.rooms or hint_geometry(drawn) is not None:
-        return None
-    order = _anneal_order(drawn)
-    if order not in AT_ONCE_ORDERS:
-        return None
-    return Annealing(drawn, seed, deadline, order)
+    order = _construction_order(drawn, has_hints=hint_geometry(drawn) is not None)
+    return Annealing(drawn, seed, deadline, order) if order in AT_ONCE_ORDERS else None
 
 
 class Annealing:

@@ -468,6 +468,7 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
     rows = int(height / GRID_CELL) + 1
     counts[:] = 0
     total = 0.0
+    placed_x, placed_y, placed_w, placed_h, placed_cost = placed
     if first == 0:
         for i in range(nc):
             x[i] = work.x[i]
@@ -475,7 +476,6 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
             w[i] = work.w[i]
             h[i] = work.h[i]
     else:
-        placed_x, placed_y, placed_w, placed_h, placed_cost = placed
         for i in range(nc + first):
             x[i] = placed_x[i]
             y[i] = placed_y[i]
@@ -488,7 +488,6 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
         _grid_add(grid, counts, i, x[i], y[i], w[i], h[i], wall, columns, rows)
     nd = 0
     if incremental:
-        placed_x, placed_y, placed_w, placed_h, placed_cost = placed
         moved[:nc + first] = False
         if first == 0:
             for i in range(nc):
@@ -503,7 +502,6 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
         if incremental and s != changed and _undisturbed(s, parent, on_boundary, sw, sh, extra_ptr, extra_to,
                                                          sibling_ptr, sibling_to, width, height, wall, x, y, w, h,
                                                          moved, dirty, nd):
-            placed_x, placed_y, placed_w, placed_h, placed_cost = placed
             x[k], y[k], w[k], h[k] = placed_x[k], placed_y[k], placed_w[k], placed_h[k]
             moved[k] = False
             _grid_add(grid, counts, k, x[k], y[k], w[k], h[k], wall, columns, rows)
@@ -570,7 +568,6 @@ def _place_satellites(work, parent, need, on_boundary, long_side, short_side, tu
         slide_of[s] = best_slide
         x[k], y[k], w[k], h[k] = best_x, best_y, sw, sh
         if incremental:
-            placed_x, placed_y, placed_w, placed_h, placed_cost = placed
             nd = _moved_from(k, x, y, w, h, placed_x, placed_y, placed_w, placed_h, moved, dirty, nd)
         _grid_add(grid, counts, k, best_x, best_y, sw, sh, wall, columns, rows)
         cost_of[s] = best
@@ -781,5 +778,6 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
               door_ptr, door_to, on_boundary, width, height, wall, per_edge, work)
     _place_satellites(work, parent, sat_need, sat_on_boundary, best_s_long, best_s_short, best_s_turned,
                       best_s_side, best_s_slide, extra_ptr, extra_to, extra_need, sibling_ptr, sibling_to, width,
-                      height, wall, x, y, w, h, cost_of, grid, counts, stamp, np.inf, 0, placed, False, -1, moved, dirty)
+                      height, wall, x, y, w, h, cost_of, grid, counts, stamp, np.inf, 0, placed, False, -1, moved,
+                      dirty)
     return best_violation, x, y, w, h, made
