@@ -97,12 +97,17 @@ def _warm_annealer() -> dict:
     if importlib.util.find_spec("numba") is None:
         return {"warmed": False}
     from layoutdsl.api import lint_source, read_source
+    from layoutdsl.compile import generate
     from layoutdsl.compile.anneal import anneal_geometry
     from layoutdsl.compile.satellites import satellites_geometry
 
     spec_path = Path(__file__).resolve().parents[1] / "specs" / "school_cycle.lay"
     spec, _ = lint_source(read_source(str(spec_path)))
-    # and the core-and-satellites annealer's (layoutdsl.compile.satellites), which compile runs too
+    # and the core-and-satellites annealer's (layoutdsl.compile.satellites), which compile runs
+    # on the plans it splits. Its 4-corridor ring is below generate.CORE_BLOCK_ROOMS, so the
+    # split is lowered to it here: the kernel's machine code is the same for any sizes (this
+    # process ends after the warm-up; the plans are compiled in processes of their own).
+    generate.CORE_BLOCK_ROOMS = 4
     return {"warmed": anneal_geometry(spec, 0) is not None and satellites_geometry(spec, 0) is not None}
 
 
