@@ -119,6 +119,11 @@ the satellites was a quarter to a third of each one's time. Of the runs ending 4
 a layout (13 of the office's, none of the school's), the 7 of seeds 0-19 were each repaired
 as compile repairs them: none repaired, each repair taking 1.2-9.5 s of a core."""
 
+PROGRESS_MARKS = 20
+"""A run records its best so far at every 1/PROGRESS_MARKS (5 %) of its moves with the
+satellites, in the array Satellites.chain is given as `progress` (bench/checkpoints.py reads
+it to see where runs stand when a checkpoint would judge them; it changes no run)."""
+
 SETTLED_SHARE = 0.8
 """A run ends, and hands its best state to the repair, when this share of its moves with the
 satellites is made: the rest of the cooling no longer changes where a run stands. Measured
@@ -246,9 +251,11 @@ class Satellites:
     def moves(self) -> int:
         return self.core_moves() + SATELLITE_MOVES
 
-    def chain(self, kernel_seed: int, cancel: np.ndarray):
+    def chain(self, kernel_seed: int, cancel: np.ndarray, progress: np.ndarray | None = None):
         """One run from a random sequence pair of the core (the kernel releases the GIL),
-        cut off when cancel[0] is set; geometry() reads its result."""
+        cut off when cancel[0] is set; geometry() reads its result. `progress`, an array of
+        PROGRESS_MARKS, receives the run's best at every mark (NaN for those it stopped
+        before)."""
         core = self.core
         core_moves = self.core_moves()
         scale = core.width + core.height
@@ -260,7 +267,8 @@ class Satellites:
             self.parent, self.need, self.long_side, self.short_side, self.bounds, self.on_boundary, self.extra_ptr,
             self.extra_to, self.extra_need, self.sibling_ptr, self.sibling_to, share,
             core_moves, SATELLITES_TEMPERATURE * scale, core_moves + int(CHECKPOINT_SHARE * SATELLITE_MOVES), REACH_M,
-            core_moves + int(SETTLED_SHARE * SATELLITE_MOVES), INCREMENTAL_PLACEMENT)
+            core_moves + int(SETTLED_SHARE * SATELLITE_MOVES), INCREMENTAL_PLACEMENT,
+            np.full(PROGRESS_MARKS, np.nan) if progress is None else progress)
 
     @staticmethod
     def repairable(violation: float) -> bool:
@@ -600,7 +608,7 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
                        sat_drawn_long, sat_drawn_short, sat_bounds, sat_on_boundary, extra_ptr, extra_to,
                        extra_need,
                        sibling_ptr, sibling_to, satellite_share, core_alone_until, t_satellites, checkpoint,
-                       reach, last_step, incremental):
+                       reach, last_step, incremental, progress):
     np.random.seed(seed)
     n = drawn_long.shape[0]
     ns = parent.shape[0]
@@ -654,7 +662,13 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
     best_cost = cost
     ratio = t_end / t_start
     made = moves
+    # the best so far at every 1/PROGRESS_MARKS of the moves with the satellites
+    mark_every = max(1, (moves - core_alone_until) // progress.shape[0])
+    progress[:] = np.nan
     for step in range(moves):
+        since = step - core_alone_until
+        if since > 0 and since % mark_every == 0 and since // mark_every <= progress.shape[0]:
+            progress[since // mark_every - 1] = best_violation
         if step % CANCEL_CHECK == 0 and cancel[0]:
             made = step
             break

@@ -194,6 +194,24 @@ def test_a_run_still_beyond_reach_at_the_checkpoint_stops_there(short_runs, monk
     assert settled_later <= violation  # the same run, longer: its best can only be as good
 
 
+def test_a_run_records_its_best_so_far_at_every_mark(short_runs, monkeypatch):
+    """progress holds the best state's distance from a layout at every 5 % of the moves
+    with the satellites the run made (NaN beyond), never rising, and the run's result is
+    the last of them or better."""
+    monkeypatch.setattr(satellites_module, "REACH_M", 1e9)  # no checkpoint stops it
+    satellites = Satellites.of(_crowded())
+    progress = np.zeros(satellites_module.PROGRESS_MARKS)
+    violation, *_, made = satellites.chain(3, np.zeros(1, dtype=np.int64), progress)
+    marks = (made - 20_000) // 1_000  # one every 1000 moves with the satellites
+    assert marks == 16  # the run settles at 80 %
+    assert not np.isnan(progress[:marks]).any() and np.isnan(progress[marks:]).all()
+    assert all(later <= earlier for earlier, later in zip(progress[:marks], progress[1:marks]))
+    assert violation <= progress[marks - 1]
+    # the record changes nothing in the run
+    unrecorded = satellites.chain(3, np.zeros(1, dtype=np.int64))
+    assert unrecorded[0] == violation and unrecorded[5] == made
+
+
 def test_runs_beyond_reach_give_the_construction_nothing_to_repair(short_runs, monkeypatch):
     """AnnealingRuns drops a satellites run that ended beyond REACH_M: the construction
     waits for the next run instead of repairing it."""
