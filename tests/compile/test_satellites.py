@@ -205,8 +205,9 @@ def test_a_run_records_its_best_so_far_at_every_mark(short_runs, monkeypatch):
     marks = (made - 20_000) // 1_000  # one every 1000 moves with the satellites
     assert marks == 16  # the run settles at 80 %
     assert not np.isnan(progress[:marks]).any() and np.isnan(progress[marks:]).all()
-    assert all(later <= earlier for earlier, later in zip(progress[:marks], progress[1:marks]))
-    assert violation <= progress[marks - 1]
+    # never rising (a best of equal violation within 1e-9 and a lower cost may replace it)
+    assert all(later <= earlier + 1e-6 for earlier, later in zip(progress[:marks], progress[1:marks]))
+    assert violation <= progress[marks - 1] + 1e-6
     # the record changes nothing in the run
     unrecorded = satellites.chain(3, np.zeros(1, dtype=np.int64))
     assert unrecorded[0] == violation and unrecorded[5] == made
