@@ -677,10 +677,12 @@ def _anneal_satellites(drawn_long, drawn_short, bounds, edge_a, edge_b, need, do
     # the best so far at every 1/PROGRESS_MARKS of the moves with the satellites
     mark_every = max(1, (moves - core_alone_until) // progress.shape[0])
     progress[:] = np.nan
+    mark, next_mark = 0, core_alone_until + mark_every
     for step in range(moves):
-        since = step - core_alone_until
-        if since > 0 and since % mark_every == 0 and since // mark_every <= progress.shape[0]:
-            progress[since // mark_every - 1] = best_violation
+        if step == next_mark and mark < progress.shape[0]:
+            progress[mark] = best_violation
+            mark += 1
+            next_mark += mark_every
         if step % CANCEL_CHECK == 0 and cancel[0]:
             made = step
             break
