@@ -149,7 +149,7 @@ def run(args: argparse.Namespace) -> int:
         strategy=args.strategy,
     )
     if args.variants:
-        return _run_variants(spec, args, options, outdir, formats)
+        return _run_variants(spec, args, options, outdir, formats, sources)
 
     from layoutdsl.compile import compile_spec
 
@@ -264,8 +264,9 @@ def variant_differences(spec, layouts):
 
 
 def _write_variants_report(spec, seeds: list[int], source: str, layouts, pairwise, from_hints,
-                           outdir: Path) -> Path:
-    """NAME-variants.json: each variant's seed and differences, for comparing them later."""
+                           outdir: Path, distinct: list[bool] | None = None) -> Path:
+    """NAME-variants.json: each variant's seed and differences, for comparing them later;
+    `distinct` (new arrangements only): whether it lies 0.3 or more from every one before it."""
     import json
 
     from layoutdsl.emit.atomic import write_text_atomic
@@ -275,6 +276,7 @@ def _write_variants_report(spec, seeds: list[int], source: str, layouts, pairwis
         "source": source,
         "variants": [
             {"index": index, "seed": seed, "found": layout is not None,
+             "distinct": None if distinct is None else distinct[index - 1],
              "difference_from_hints": None if original is None else round(original, 4)}
             for index, (layout, original, seed) in enumerate(zip(layouts, from_hints, seeds), start=1)
         ],
@@ -289,7 +291,7 @@ def _progress_line(line: str) -> None:
     print(line, file=sys.stderr, flush=True)
 
 
-def _run_variants(spec, args, options, outdir: Path, formats) -> int:
+def _run_variants(spec, args, options, outdir: Path, formats, sources) -> int:
     """--variants N: the construction helper's compile_variants writes NAME-1.* ... NAME-N.*."""
     from layoutdsl.compile.variants import compile_variants
 
@@ -308,7 +310,7 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
     if outdir is not None and count:
         try:
             paths.append(_write_variants_report(spec, result.seeds, args.variants_from, layouts,
-                                                pairwise, from_hints, outdir))
+                                                pairwise, from_hints, outdir, result.distinct))
         except OSError as error:
             return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
     line = f"compiled `{spec.name}`: {count} of {args.variants} variants"
@@ -326,11 +328,13 @@ def _run_variants(spec, args, options, outdir: Path, formats) -> int:
         status = "-" if info is None else _status_text(spec, info)
         original = from_hints[index - 1]
         versus = "" if original is None else f", difference from the hints {original:.2f}"
-        lines.append(f"  {spec.name}-{index}: objective {objective}, {status}{versus}")
+        close = ", close to an earlier variant" if result.distinct is not None and not result.distinct[index - 1] else ""
+        lines.append(f"  {spec.name}-{index}: objective {objective}, {status}{versus}{close}")
     if pairwise:
         lines.append("  pairwise    " + ", ".join(
             f"{i}-{j} {value:.2f}" for (i, j), value in sorted(pairwise.items())))
     if paths:
         lines.append("  wrote       " + ", ".join(str(p) for p in paths))
     print("\n".join(lines))
+    _print_diagnostics(list(result.diagnostics), sources, args.format)
     return exitcodes.OK if count == args.variants else exitcodes.NO_LAYOUT

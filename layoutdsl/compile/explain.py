@@ -1,4 +1,5 @@
-"""Why there is no layout: E9xx diagnostics, and a deletion filter for infeasible specs.
+"""Why there is no layout: E9xx diagnostics (and W906, variants that repeat one another), and a
+deletion filter for infeasible specs.
 
 When SCIP proves a spec infeasible, we look for a small set of spec lines whose constraints
 conflict: each line that constrains the geometry (an adjacency, a position, a connection, a
@@ -12,6 +13,7 @@ out of time keeps its group, which can only make the set larger, never wrong.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
@@ -76,6 +78,67 @@ E905 = register(
     "would drop the rooms' arms. The construction (strategy `auto`) places L-rooms.",
     "arms\nC0 1.5 2.2 1.8 6 9 8 1 20\n# compiled with --strategy thesis",
 )
+
+W906 = register(
+    "W906",
+    Severity.WARNING,
+    "variants-not-distinct",
+    "Reports a `--variants N` compile of new arrangements in which fewer than N variants "
+    "differ by at least 0.3 from every variant before them (the arrangement difference: the "
+    "share of room pairs whose relative position differs, best of the 8 rotations and "
+    "mirrors). Layouts of the other seeds tried, in seed order, fill the missing places and "
+    "are written too.",
+    "Those variants are much the same building, so an experiment run on them samples fewer "
+    "environments than it counts. In a long, narrow boundary the corridors must run along it "
+    "and meet their rooms in much the same order whatever the seed.",
+    "boundary\n73.425 19.8\n# office_324-Elm-Furn-Plan imported without hints (36 rooms), "
+    "compiled with --variants 5",
+)
+
+LONG_BOUNDARY = 3.0
+"""A boundary at least this many times as long as it is wide is called long in W906's help.
+Measured (bench/results/outline.txt): the two real plans of 3.7-3.8:1 differ from their
+original by 0.18-0.30 in their own box, at 0.32-0.35 median in a 2:1 box of the same area.
+office_324-Elm-Furn-Plan's `--variants 5`: in its 73.4 x 19.8 m boundary 0.17-0.26 apart and
+0.21-0.25 from the original; in 54 x 27 m, 0.34-0.42 apart and 0.31-0.46 from the original,
+with room area 0.77-0.81 of the original's (0.75-0.83 in its own boundary)."""
+
+
+def variants_not_distinct(spec: Spec, close: list[int], asked: int) -> Diagnostic:
+    """W906: the new-arrangement variants numbered `close` (1-based, of `asked`) lie within
+    0.3 of an earlier one."""
+    help_text = ("try another `--seed`, or a larger boundary: rooms in cycles of doors and a tight "
+                 "boundary leave few arrangements")
+    label = "the boundary every variant fills"
+    boundary = spec.boundary
+    if boundary is not None and min(boundary.w, boundary.h) > 0:
+        aspect = max(boundary.w, boundary.h) / min(boundary.w, boundary.h)
+        label = f"a {boundary.w:g} x {boundary.h:g} m boundary ({aspect:.1f}:1)"
+        if aspect >= LONG_BOUNDARY:
+            # the same area at 2:1, its long side where the spec has it, rounded up to 0.1 m
+            long_side = math.ceil(math.sqrt(2 * boundary.w * boundary.h) * 10) / 10
+            short_side = math.ceil(long_side * 5) / 10
+            w, h = (long_side, short_side) if boundary.w >= boundary.h else (short_side, long_side)
+            help_text = (f"a boundary of the same area at 2:1 (`{w:g} {h:g}` in `boundary`) leaves room "
+                         "for other arrangements, of a building of another shape")
+    return Diagnostic(
+        code=W906,
+        message=(f"{_numbered('variant', close)} of {asked} {'is' if len(close) == 1 else 'are'} "
+                 "within 0.3 of an earlier variant: no arrangement farther from them was found"),
+        filename=spec.path,
+        span=_first_line_span(spec),
+        severity=Severity.WARNING,
+        label=label,
+        help=help_text,
+    )
+
+
+def _numbered(noun: str, numbers: list[int]) -> str:
+    """'variant 3', 'variants 2 and 5', 'variants 2, 3 and 5'."""
+    if len(numbers) == 1:
+        return f"{noun} {numbers[0]}"
+    return f"{noun}s " + ", ".join(str(n) for n in numbers[:-1]) + f" and {numbers[-1]}"
+
 
 _FALLBACK_SPAN = Span(1, 1, 1, 2)
 

@@ -35,7 +35,9 @@ from dataclasses import dataclass, replace
 from itertools import combinations
 from pathlib import Path
 
+from layoutdsl.compile.explain import variants_not_distinct
 from layoutdsl.compile.generate import TOP_CHOICES
+from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.syntax.ast import Position, Spec
 from layoutdsl.layout import Layout
 
@@ -66,6 +68,12 @@ class VariantsResult:
     paths: list[Path]
     positions: list[tuple[str, float, float] | None]
     """The (room, x, y) each variant fixed, or None where it kept the spec's own positions."""
+    distinct: list[bool] | None = None
+    """New arrangements: per variant, whether it lies MIN_PAIRWISE or more from every variant
+    before it (False for one that only fills a place no such arrangement was found for, and
+    where no layout was found). None for variants from the hints, which are not compared."""
+    diagnostics: tuple[Diagnostic, ...] = ()
+    """W906 when fewer than N new arrangements were MIN_PAIRWISE apart."""
 
 
 def chosen_room(spec: Spec) -> str | None:
@@ -236,8 +244,14 @@ def compile_variants(
     if options is None:
         options = SolveOptions.from_settings(spec.settings)
     workers = max(1, min(workers or default_workers(), n))
+    distinct: list[bool] | None = None
+    diagnostics: tuple[Diagnostic, ...] = ()
     if source == "graph":
-        results, seeds = _new_arrangements(spec, n, seed, options, workers, progress)
+        results, seeds, distinct = _new_arrangements(spec, n, seed, options, workers, progress)
+        close = [index for index, ((layout, _), kept) in enumerate(zip(results, distinct), start=1)
+                 if layout is not None and not kept]
+        if close:
+            diagnostics = (variants_not_distinct(spec, close, n),)
     else:
         room = chosen_room(spec)
         jobs = []
@@ -255,7 +269,7 @@ def compile_variants(
     paths: list[Path] = []
     if outdir is not None:
         paths = _write(spec, layouts, Path(outdir), formats, robot_room, world_options or {})
-    return VariantsResult(layouts, seeds, diversity(found), paths, positions)
+    return VariantsResult(layouts, seeds, diversity(found), paths, positions, distinct, diagnostics)
 
 
 MIN_PAIRWISE = 0.3
@@ -273,8 +287,10 @@ on to full constructions without spending its whole quick budget first."""
 
 
 def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
-                      progress: Callable[[str], None] | None = None) -> tuple[list, list[int | None]]:
-    """(layout, None) of each of N new arrangements, and the seed each came from.
+                      progress: Callable[[str], None] | None = None
+                      ) -> tuple[list, list[int | None], list[bool]]:
+    """(layout, None) of each of N new arrangements, the seed each came from, and whether it
+    lies MIN_PAIRWISE or more from every one before it.
 
     Seeds seed, seed + 1, ... get a quick try each (_compile_variant), `workers` at a time
     and a few queued, so no core waits for a slow seed; their outcomes are taken in seed
@@ -324,9 +340,15 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
         failed.clear()
         for job, (layout, _) in _in_seed_order(spec, full, workers, enough):
             take(job[0], layout, "full construction")
-    chosen = [(s, layout) for s, layout, _ in kept] + close[:n - len(kept)]
+    chosen = [(s, layout) for s, layout, _ in kept]
+    for variant_seed, layout in close[:n - len(kept)]:
+        chosen.append((variant_seed, layout))
+        if progress is not None:
+            progress(f"variant {len(chosen)} of {n}: seed {variant_seed}, within {MIN_PAIRWISE:g} of an "
+                     "earlier variant (no arrangement farther from them among the seeds tried)")
+    distinct = [True] * len(kept) + [False] * (n - len(kept))
     chosen += [(None, None)] * (n - len(chosen))
-    return [(layout, None) for _, layout in chosen], [s for s, _ in chosen]
+    return [(layout, None) for _, layout in chosen], [s for s, _ in chosen], distinct
 
 
 LOOKAHEAD = 2

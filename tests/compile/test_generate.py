@@ -306,28 +306,57 @@ def test_new_arrangements_are_taken_in_seed_order_and_close_ones_skipped(monkeyp
             return outcomes.get(seed, (None, None))[0 if quick else 1], None
 
         monkeypatch.setattr(variants, "_compile_variant", fake)
-        results, seeds = variants._new_arrangements(spec, n, 10, None, workers=1)
-        return [layout for layout, _ in results], seeds
+        results, seeds, distinct = variants._new_arrangements(spec, n, 10, None, workers=1)
+        return [layout for layout, _ in results], seeds, distinct
 
     # 11 is a copy of 10 and 12 finds nothing quickly: skipped, and 13 is kept; the seeds
     # after the N-th kept one are never tried
-    layouts, seeds = run({10: (first, first), 11: (grid(range(6)), None), 13: (far, far),
-                          14: (farther, farther)}, 2)
-    assert seeds == [10, 13] and layouts == [first, far]
+    layouts, seeds, distinct = run({10: (first, first), 11: (grid(range(6)), None), 13: (far, far),
+                                    14: (farther, farther)}, 2)
+    assert seeds == [10, 13] and layouts == [first, far] and distinct == [True, True]
     assert tries == [(10, True), (11, True), (12, True), (13, True)]
     # quick tries used up (1 + 3 * (N - 1) seeds): the seeds that found nothing get their
     # full construction in seed order, then copies fill what is still missing
-    layouts, seeds = run({10: (first, first), 11: (grid(range(6)), None), 12: (None, far)}, 3)
+    layouts, seeds, distinct = run({10: (first, first), 11: (grid(range(6)), None), 12: (None, far)}, 3)
     assert tries[:7] == [(s, True) for s in range(10, 17)]
     assert tries[7:] == [(s, False) for s in range(12, 17)]
     assert seeds == [10, 12, 11] and layouts == [first, far, grid(range(6))]
+    assert distinct == [True, True, False]  # the copy only fills the third place
     # quick tries that mostly fail stop at 2 failures per variant asked for (10 of 13 here)
-    layouts, seeds = run({10: (first, first)}, 5)
+    layouts, seeds, distinct = run({10: (first, first)}, 5)
     assert tries == [(s, True) for s in range(10, 21)] + [(s, False) for s in range(11, 21)]
     assert seeds == [10, None, None, None, None] and layouts == [first, None, None, None, None]
+    assert distinct == [True, False, False, False, False]
     # nothing at all: no layout, no seed
-    layouts, seeds = run({}, 1)
+    layouts, seeds, distinct = run({}, 1)
     assert tries == [(10, True), (10, False)] and layouts == [None] and seeds == [None]
+    assert distinct == [False]
+
+
+LONG_ROW = Path(__file__).resolve().parents[1] / "diagnostics" / "solve" / "W906-variants-in-a-long-boundary.lay"
+
+
+def test_variants_that_repeat_one_another_are_flagged_and_the_suggested_boundary_frees_them():
+    from layoutdsl.api import lint_source, read_source
+
+    # a row of five rooms, each with a door to the next, one room deep: every arrangement is
+    # the row or its mirror (its snapshot shows the whole message)
+    spec, _ = lint_source(read_source(str(LONG_ROW)))
+    options = SolveOptions(time_limit=10, quiet=True)
+    result = compile_variants(spec, 3, seed=0, options=options, workers=1)
+    assert all(layout is not None for layout in result.layouts)
+    assert result.distinct == [True, False, False]
+    assert max(difference(layout_centres(a), layout_centres(b))
+               for a in result.layouts for b in result.layouts) < 0.3
+    [warning] = result.diagnostics
+    assert warning.code == "W906" and "variants 2 and 3 of 3" in warning.message
+    # the help's boundary: the same area at 2:1, and in it the row folds three ways
+    w, h = (float(v) for v in warning.help.split("`")[1].split())
+    assert w == pytest.approx(2 * h) and w * h == pytest.approx(24 * 4.8, rel=0.02)
+    folded = compile_variants(replace(spec, boundary=Boundary(w, h)), 3, seed=0, options=options, workers=1)
+    assert folded.distinct == [True, True, True] and folded.diagnostics == ()
+    centres = [layout_centres(layout) for layout in folded.layouts]
+    assert min(difference(a, b) for i, a in enumerate(centres) for b in centres[i + 1:]) >= 0.3
 
 
 def test_new_arrangements_on_two_workers_are_those_of_one(tmp_path):
