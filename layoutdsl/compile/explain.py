@@ -104,9 +104,9 @@ office_324-Elm-Furn-Plan's `--variants 5`: in its 73.4 x 19.8 m boundary 0.17-0.
 with room area 0.77-0.81 of the original's (0.75-0.83 in its own boundary)."""
 
 
-def variants_not_distinct(spec: Spec, close: list[int], asked: int) -> Diagnostic:
+def variants_not_distinct(spec: Spec, close: list[int], asked: int, apart: float) -> Diagnostic:
     """W906: the new-arrangement variants numbered `close` (1-based, of `asked`) lie within
-    0.3 of an earlier one."""
+    `apart` (the arrangement difference variants are kept at) of an earlier one."""
     help_text = ("try another `--seed`, or a larger boundary: rooms in cycles of doors and a tight "
                  "boundary leave few arrangements")
     label = "the boundary every variant fills"
@@ -124,7 +124,7 @@ def variants_not_distinct(spec: Spec, close: list[int], asked: int) -> Diagnosti
     return Diagnostic(
         code=W906,
         message=(f"{_numbered('variant', close)} of {asked} {'is' if len(close) == 1 else 'are'} "
-                 "within 0.3 of an earlier variant: no arrangement farther from them was found"),
+                 f"within {apart:g} of an earlier variant: no arrangement farther from them was found"),
         filename=spec.path,
         span=_first_line_span(spec),
         severity=Severity.WARNING,

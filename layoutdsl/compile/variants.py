@@ -251,7 +251,7 @@ def compile_variants(
         close = [index for index, ((layout, _), kept) in enumerate(zip(results, distinct), start=1)
                  if layout is not None and not kept]
         if close:
-            diagnostics = (variants_not_distinct(spec, close, n),)
+            diagnostics = (variants_not_distinct(spec, close, n, MIN_PAIRWISE),)
     else:
         room = chosen_room(spec)
         jobs = []
