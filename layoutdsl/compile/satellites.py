@@ -102,9 +102,9 @@ doors alone, then opens them to make room for its satellites: of 38 office runs 
 meet every door, 34 had a door between two core rooms open (bench/results/satellites.txt
 section 8). Measured with bench/checkpoints.py on fresh runs (kernel seeds 1000-1039, runs
 within REACH_M repaired as compile repairs them, section 9): runs that repaired,
-office_floor-1024x523 5 of 40 at weight 1, 17 of 40 at 2, 14 of 40 at 3;
-school_stjoseph_scatholichighschool 4, 15 and 11 of 40. (Ten runs a plan at an earlier kernel
-had shown the school worse at 2; the forty fresh ones do not.)"""
+office_floor-1024x523 5, 12, 17, 14 and 14 of 40 at weights 1, 1.5, 2, 2.5 and 3;
+school_stjoseph_scatholichighschool 4, 7, 15, 10 and 11 of 40. (Ten runs a plan at an earlier
+kernel had shown the school worse at 2; the forty fresh ones do not.)"""
 
 SATELLITES_TEMPERATURE = 0.02
 """The temperature (times the boundary's width plus height, as START_TEMPERATURE) at which the
