@@ -444,8 +444,8 @@ def _solve_active(
     model.optimizeNogil()
     status = model.getStatus()
     _debug(f"    {mode} model: {status} in "
-           f"{model.getSolvingTime():.2f}s, {len(options)} pairs, {len(pairs.binaries)} free, "
-           f"{model.getNSols()} sols")
+           f"{model.getSolvingTime():.2f}s, {model.getNTotalNodes()} nodes, {model.getNLPIterations()} LP "
+           f"iterations, {len(options)} pairs, {len(pairs.binaries)} free, {model.getNSols()} sols")
     if model.getNSols() == 0:
         return None
     return _read_outcome(model, problem.spec, options, rooms, pairs, orientations)
