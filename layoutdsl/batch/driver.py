@@ -39,6 +39,9 @@ class BatchSummary:
     seconds: float = 0.0
     failures: list[tuple[str, str]] = field(default_factory=list)
     manifest: Path | None = None
+    close: dict[str, list[tuple[str, float]]] = field(default_factory=dict)
+    """Plan -> (building, its least difference from the plan's earlier variants) of each done
+    building within NEW_ARRANGEMENT of an earlier variant of its plan (near_copies)."""
 
 
 ProgressHook = Callable[[str, object], None]
@@ -90,10 +93,53 @@ def run_batch(
                     progress("finished", outcome if record["status"] == "done" else
                              Outcome(job.building, False, record["reason"], outcome.seconds))
         summary.manifest = manifest.write_manifest(outdir, order, records)
+        summary.close = near_copies(outdir, jobs, records)
     summary.seconds = time.monotonic() - began
     if progress:
         progress("end", summary)
     return summary
+
+
+NEW_ARRANGEMENT = 0.3
+"""Least arrangement difference from every earlier variant of its plan at which a building
+counts as a new one, as `compile --variants` keeps them (layoutdsl.compile.variants
+.MIN_PAIRWISE)."""
+
+
+def near_copies(outdir: Path, jobs: list[Job], records: dict[str, dict]) -> dict[str, list[tuple[str, float]]]:
+    """Per plan, the done buildings (with their least difference) that lie within
+    NEW_ARRANGEMENT of a variant of the same plan before them, in variant order.
+
+    A batch makes each variant from its own seed and does not compare them while it runs (a
+    building's bytes must not depend on which others are done); this reads the finished
+    layouts afterwards. A long, narrow plan gives much the same arrangement at every seed
+    (W906 says the same of `compile --variants`).
+    """
+    from layoutdsl.layout import Layout
+    from layoutdsl.layout.difference import layout_centres, least_from_earlier
+
+    by_plan: dict[str, list[Job]] = {}
+    for job in sorted(jobs, key=lambda job: (job.plan, job.variant)):
+        record = records.get(job.building)
+        if record and record.get("status") == "done":
+            by_plan.setdefault(job.plan, []).append(job)
+    close: dict[str, list[tuple[str, float]]] = {}
+    for plan, done in by_plan.items():
+        if len(done) < 2:
+            continue
+        centres = []
+        for job in done:
+            try:
+                text = (outdir / job.building / f"{job.building}.layout.json").read_text(encoding="utf-8")
+            except OSError:
+                break  # damaged since: the next run makes it again
+            centres.append(layout_centres(Layout.from_json(text)))
+        else:
+            near = [(job.building, least) for job, least in zip(done, least_from_earlier(centres))
+                    if least is not None and least < NEW_ARRANGEMENT]
+            if near:
+                close[plan] = near
+    return close
 
 
 def _commit(outdir: Path, job: Job, outcome: Outcome) -> dict:

@@ -90,7 +90,8 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from layoutdsl.batch import (
-        BatchBusy, BatchInputError, EngineUnavailable, SolveLimits, default_workers, plan_jobs, run_batch,
+        NEW_ARRANGEMENT, BatchBusy, BatchInputError, EngineUnavailable, SolveLimits, default_workers, plan_jobs,
+        run_batch,
     )
     from layoutdsl.emit import EmitError, parse_formats
 
@@ -140,6 +141,11 @@ def run(args: argparse.Namespace) -> int:
         f"  time        {summary.seconds:.1f} s, {rate:.1f} buildings/min",
         f"  manifest    {summary.manifest}",
     ]
+    for plan, near in summary.close.items():
+        shown = ", ".join(building for building, _ in near[:MAX_FAILURES_SHOWN])
+        more = f" and {len(near) - MAX_FAILURES_SHOWN} more" if len(near) > MAX_FAILURES_SHOWN else ""
+        lines.append(f"  close       {plan}: {len(near)} buildings within {NEW_ARRANGEMENT:g} of an earlier "
+                     f"variant ({shown}{more}); W906 says why")
     for building, reason in summary.failures[:MAX_FAILURES_SHOWN]:
         lines.append(f"  failed      {building}: {reason}")
     if len(summary.failures) > MAX_FAILURES_SHOWN:

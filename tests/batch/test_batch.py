@@ -240,3 +240,19 @@ def test_dask_cluster_by_address(tmp_path):
     assert (summary.done, summary.failed) == (2, 0)
     for record in manifest_lines(tmp_path):
         check_done(tmp_path, record)
+
+
+def test_cli_names_buildings_that_repeat_an_earlier_variant(tmp_path, capsys):
+    from layoutdsl.cli import main
+
+    # five rooms in a door chain, one room deep: every seed gives the row or its mirror
+    row = tmp_path / "row.lay"
+    row.write_text((REPO / "tests" / "diagnostics" / "solve" / "W906-variants-in-a-long-boundary.lay").read_text())
+    outdir = tmp_path / "out"
+    code = main(["batch", str(row), "-o", str(outdir), "--variants", "3", "--node-limit", "5",
+                 "--time-limit", "30", "--emit", "xml", "-q"])
+    assert code == 0
+    out = capsys.readouterr().out
+    assert "close       row: 2 buildings within 0.3 of an earlier variant (row-v2, row-v3); W906 says why" in out
+    records = manifest_lines(outdir)
+    assert [r["status"] for r in records] == ["done"] * 3

@@ -5,6 +5,7 @@ import pytest
 from layoutdsl.layout.difference import (
     difference,
     difference_by_symmetry,
+    least_from_earlier,
     pairwise_differences,
     relations,
 )
@@ -75,3 +76,17 @@ def test_pairwise_differences_cover_every_pair_once():
     assert set(result) == {(0, 1), (0, 2), (1, 2)}
     assert result[(0, 2)] == 0.0
     assert result[(0, 1)] == pytest.approx(1 / 6)
+
+
+def test_least_from_earlier_is_the_least_difference_from_any_plan_before():
+    import random
+
+    rng = random.Random(3)
+    plans = [{room: (rng.uniform(0, 20), rng.uniform(0, 10)) for room in "ABCDEFG"} for _ in range(6)]
+    plans.insert(3, {room: (-x, y) for room, (x, y) in plans[1].items()})  # a mirror image of plan 1
+    least = least_from_earlier(plans)
+    assert least[0] is None and least[3] == 0.0
+    for k in range(1, len(plans)):
+        assert least[k] == pytest.approx(min(difference(plans[k], plans[j]) for j in range(k)))
+    swapped = dict(ROW, A=(1.0, 0.0), B=(0.0, 0.0))
+    assert least_from_earlier([ROW, swapped]) == [None, pytest.approx(1 / 6)]
