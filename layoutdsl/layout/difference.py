@@ -67,14 +67,14 @@ def difference_by_symmetry(a: Centres, b: Centres) -> list[float]:
     ids = sorted(set(a) & set(b))
     if len(ids) < 2:
         return [0.0] * len(SYMMETRIES)
-    pa = np.array([a[r] for r in ids], dtype=float)
-    pb = np.array([b[r] for r in ids], dtype=float)
-    reference = _relation_codes(pa)
-    fractions = []
-    for matrix in SYMMETRIES:
-        turned = pb @ np.array(matrix, dtype=float).T
-        fractions.append(float(np.mean(_relation_codes(turned) != reference)))
-    return fractions
+    reference = _relation_codes(np.array([a[r] for r in ids], dtype=float))
+    turned = _codes_by_symmetry(np.array([b[r] for r in ids], dtype=float))
+    return [float(fraction) for fraction in (turned != reference).mean(axis=1)]
+
+
+def _codes_by_symmetry(points: np.ndarray) -> np.ndarray:
+    """The relation codes of the points under each of the 8 SYMMETRIES: (symmetries, pairs)."""
+    return np.stack([_relation_codes(points @ np.array(matrix, dtype=float).T) for matrix in SYMMETRIES])
 
 
 def difference(a: Centres, b: Centres) -> float:
@@ -104,9 +104,8 @@ def least_from_earlier(plans: list[Centres]) -> list[float | None]:
     ids = sorted(set.intersection(*(set(plan) for plan in plans)))
     if len(ids) < 2:
         return [None] + [0.0] * (len(plans) - 1)
-    points = [np.array([plan[r] for r in ids], dtype=float) for plan in plans]
-    turned = np.stack([np.stack([_relation_codes(p @ np.array(m, dtype=float).T) for m in SYMMETRIES])
-                       for p in points]).astype(np.int8)  # (plans, symmetries, pairs)
+    turned = np.stack([_codes_by_symmetry(np.array([plan[r] for r in ids], dtype=float))
+                       for plan in plans]).astype(np.int8)  # (plans, symmetries, pairs)
     least: list[float | None] = [None]
     for k in range(1, len(plans)):
         reference = turned[k, 0]
