@@ -7,13 +7,13 @@ See `jobs` (what to do, seeds), `building` (one building in its own process), `e
 (local pool, Dask), `driver` (resume, writing, the log) and `manifest` (the dataset manifest).
 """
 
-from layoutdsl.batch.driver import NEW_ARRANGEMENT, BatchBusy, BatchSummary, near_copies, run_batch
+from layoutdsl.batch.driver import BatchBusy, BatchSummary, near_copies, run_batch
 from layoutdsl.batch.executors import ENGINES, EngineUnavailable, default_workers
 from layoutdsl.batch.jobs import BatchInputError, Job, SolveLimits, derive_seed, plan_jobs
 from layoutdsl.batch.manifest import MANIFEST_NAME, RECORD_FIELDS, TIMING_FIELDS
 
 __all__ = [
-    "ENGINES", "MANIFEST_NAME", "NEW_ARRANGEMENT", "RECORD_FIELDS", "TIMING_FIELDS", "BatchBusy",
+    "ENGINES", "MANIFEST_NAME", "RECORD_FIELDS", "TIMING_FIELDS", "BatchBusy",
     "BatchInputError", "BatchSummary", "EngineUnavailable", "Job", "SolveLimits", "default_workers",
     "derive_seed", "near_copies", "plan_jobs", "run_batch",
 ]

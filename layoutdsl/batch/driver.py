@@ -41,7 +41,7 @@ class BatchSummary:
     manifest: Path | None = None
     close: dict[str, list[tuple[str, float]]] = field(default_factory=dict)
     """Plan -> (building, its least difference from the plan's earlier variants) of each done
-    building within NEW_ARRANGEMENT of an earlier variant of its plan (near_copies)."""
+    building within variants.MIN_PAIRWISE of an earlier variant of its plan (near_copies)."""
 
 
 ProgressHook = Callable[[str, object], None]
@@ -100,21 +100,17 @@ def run_batch(
     return summary
 
 
-NEW_ARRANGEMENT = 0.3
-"""Least arrangement difference from every earlier variant of its plan at which a building
-counts as a new one, as `compile --variants` keeps them (layoutdsl.compile.variants
-.MIN_PAIRWISE)."""
-
-
 def near_copies(outdir: Path, jobs: list[Job], records: dict[str, dict]) -> dict[str, list[tuple[str, float]]]:
-    """Per plan, the done buildings (with their least difference) that lie within
-    NEW_ARRANGEMENT of a variant of the same plan before them, in variant order.
+    """Per plan, the done buildings (with their least difference) that lie within the
+    difference at which `compile --variants` keeps a new arrangement (variants.MIN_PAIRWISE)
+    of a variant of the same plan before them, in variant order.
 
     A batch makes each variant from its own seed and does not compare them while it runs (a
     building's bytes must not depend on which others are done); this reads the finished
     layouts afterwards. A long, narrow plan gives much the same arrangement at every seed
     (W906 says the same of `compile --variants`).
     """
+    from layoutdsl.compile.variants import MIN_PAIRWISE
     from layoutdsl.layout import Layout
     from layoutdsl.layout.difference import layout_centres, least_from_earlier
 
@@ -129,14 +125,16 @@ def near_copies(outdir: Path, jobs: list[Job], records: dict[str, dict]) -> dict
             continue
         centres = []
         for job in done:
+            # the layout JSON among the files its record lists
+            name = next(name for name in records[job.building]["files"] if name.endswith(".layout.json"))
             try:
-                text = (outdir / job.building / f"{job.building}.layout.json").read_text(encoding="utf-8")
+                text = (outdir / name).read_text(encoding="utf-8")
             except OSError:
                 break  # damaged since: the next run makes it again
             centres.append(layout_centres(Layout.from_json(text)))
         else:
             near = [(job.building, least) for job, least in zip(done, least_from_earlier(centres))
-                    if least is not None and least < NEW_ARRANGEMENT]
+                    if least is not None and least < MIN_PAIRWISE]
             if near:
                 close[plan] = near
     return close

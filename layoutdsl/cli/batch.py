@@ -90,8 +90,7 @@ def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from layoutdsl.batch import (
-        NEW_ARRANGEMENT, BatchBusy, BatchInputError, EngineUnavailable, SolveLimits, default_workers, plan_jobs,
-        run_batch,
+        BatchBusy, BatchInputError, EngineUnavailable, SolveLimits, default_workers, plan_jobs, run_batch,
     )
     from layoutdsl.emit import EmitError, parse_formats
 
@@ -141,10 +140,12 @@ def run(args: argparse.Namespace) -> int:
         f"  time        {summary.seconds:.1f} s, {rate:.1f} buildings/min",
         f"  manifest    {summary.manifest}",
     ]
+    from layoutdsl.compile.variants import MIN_PAIRWISE  # near_copies' threshold (loaded by it already)
+
     for plan, near in summary.close.items():
         shown = ", ".join(building for building, _ in near[:MAX_FAILURES_SHOWN])
         more = f" and {len(near) - MAX_FAILURES_SHOWN} more" if len(near) > MAX_FAILURES_SHOWN else ""
-        lines.append(f"  close       {plan}: {len(near)} buildings within {NEW_ARRANGEMENT:g} of an earlier "
+        lines.append(f"  close       {plan}: {len(near)} buildings within {MIN_PAIRWISE:g} of an earlier "
                      f"variant ({shown}{more}); W906 says why")
     for building, reason in summary.failures[:MAX_FAILURES_SHOWN]:
         lines.append(f"  failed      {building}: {reason}")
