@@ -108,8 +108,7 @@ def repaired(spec, geometry, seed: int) -> bool:
 
     if spec.arms:
         geometry = lshape.seed_arms(spec, geometry, random.Random(seed), hints=False)
-        boxes, joins = lshape.boxes_spec(spec, geometry)
-        problem = construct._Problem.of(boxes, joins=joins, checked=spec, crossing=lshape.crossings(spec))
+        problem = construct.boxed_problem(spec, geometry)
     else:
         problem = construct._Problem.of(spec)
     rects = construct._repair(problem, geometry, time.monotonic() + REPAIR_SECONDS, 0,

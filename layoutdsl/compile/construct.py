@@ -1124,6 +1124,15 @@ def construct_start(
             annealing.close()
 
 
+def boxed_problem(spec: Spec, rects: dict[str, Rect], crossing=None) -> _Problem:
+    """The repair's problem for a spec with L-rooms, each L drawn as its two boxes, with each
+    of its doors on the box nearest the neighbour in `rects`; `crossing`:
+    lshape.crossings(spec), computed once by a caller that reboxes often."""
+    boxes, joins = lshape.boxes_spec(spec, rects)
+    return _Problem.of(boxes, joins=joins, checked=spec,
+                       crossing=lshape.crossings(spec) if crossing is None else crossing)
+
+
 def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, seed: int,
                     rng: random.Random, annealing: Annealing | None,
                     max_geometries: int | None = None,
@@ -1135,9 +1144,7 @@ def _first_repaired(spec: Spec, problem: _Problem, candidates, deadline: float, 
     crossing = lshape.crossings(spec) if spec.arms else None
 
     def rebox(rects: dict[str, Rect]) -> _Problem:
-        # the boxes' problem with each L-room's doors on its box nearest the neighbour
-        boxes, joins = lshape.boxes_spec(spec, rects)
-        return _Problem.of(boxes, joins=joins, checked=spec, crossing=crossing)
+        return boxed_problem(spec, rects, crossing)
 
     repaired = 0
     for index, (kind, make_geometry, last) in enumerate(_in_turn(candidates, annealing)):
