@@ -23,10 +23,11 @@ construct.ANNEAL_REPAIR_M).
 from __future__ import annotations
 
 import argparse
-import fnmatch
 import sys
 import time
 from pathlib import Path
+
+from plans import DEFAULT_FOLDER, ONLY_HELP, plan_files
 
 
 def _row(path: Path, seeds: int, kernel: str) -> str | None:
@@ -56,18 +57,15 @@ def _row(path: Path, seeds: int, kernel: str) -> str | None:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("folder", nargs="?", default=str(Path(__file__).resolve().parents[1].parent / "shared" / "floorplans"))
+    parser.add_argument("folder", nargs="?", default=str(DEFAULT_FOLDER))
     parser.add_argument("--seeds", type=int, default=2)
-    parser.add_argument("--only", help="comma-separated substrings or patterns of plan names")
+    parser.add_argument("--only", help=ONLY_HELP)
     parser.add_argument("--kernel", choices=("sequence-pair", "satellites"), default="sequence-pair")
     parser.add_argument("--out", help="also write the table to this file")
     args = parser.parse_args(argv)
     from layoutdsl.compile.construct import ANNEAL_REPAIR_M
 
-    paths = sorted(Path(args.folder).glob("*.xml"))
-    if args.only:
-        wanted = args.only.split(",")
-        paths = [p for p in paths if any(w in p.stem or fnmatch.fnmatch(p.stem, w) for w in wanted)]
+    paths = plan_files(args.folder, args.only)
     if not paths:
         print(f"no building XML files in {args.folder}", file=sys.stderr)
         return 2

@@ -42,8 +42,9 @@ from pathlib import Path
 import networkx as nx
 import numpy as np
 
-HERE = Path(__file__).resolve()
-DEFAULT_PLAN = HERE.parents[1].parent / "shared" / "floorplans" / "school_stjoseph_scatholichighschool.xml"
+from plans import DEFAULT_FOLDER
+
+DEFAULT_PLAN = DEFAULT_FOLDER / "school_stjoseph_scatholichighschool.xml"
 
 
 class Stages:

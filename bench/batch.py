@@ -33,8 +33,9 @@ import tempfile
 import time
 from pathlib import Path
 
+from plans import DEFAULT_FOLDER, plan_files
+
 REPO = Path(__file__).resolve().parents[1]
-DEFAULT_FOLDER = REPO.parent / "shared" / "floorplans"
 SIZE_BUCKETS = ((1, 10), (11, 20), (21, 30), (31, 45), (46, 60), (61, 200))
 
 
@@ -132,7 +133,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--out", type=Path, help="also write the report to this file")
     args = parser.parse_args(argv)
 
-    plans = sorted(args.folder.glob("*.xml"), key=lambda p: (space_count(p), p.name))
+    plans = sorted(plan_files(args.folder), key=lambda p: (space_count(p), p.name))
     if args.plans:
         plans = plans[: args.plans]
     rooms = {p.stem: space_count(p) for p in plans}

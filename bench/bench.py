@@ -20,7 +20,6 @@ not the run. Runs unattended:
 from __future__ import annotations
 
 import argparse
-import fnmatch
 import json
 import math
 import statistics
@@ -29,8 +28,8 @@ import time
 from pathlib import Path
 
 from layoutdsl.devtools.isolation import run_isolated
+from plans import DEFAULT_FOLDER, ONLY_HELP, plan_files
 
-DEFAULT_FOLDER = Path(__file__).resolve().parents[2] / "shared" / "floorplans"
 GRACE_SECONDS = 30.0
 """A solve gets this long past its time limit before its process is killed."""
 
@@ -112,9 +111,7 @@ def bench(folder: Path, *, time_limit: float, reference_limit: float, only: str 
           skip_reference: bool, seed: int, log=None) -> list[dict]:
     """One row per plan (sorted by file name); `log(row)` is called as each row completes."""
     rows = []
-    for path in sorted(folder.glob("*.xml")):
-        if only and not (fnmatch.fnmatch(path.name, only) or only in path.name):
-            continue
+    for path in plan_files(folder, only):
         row: dict = {"plan": path.stem}
         try:
             row.update(plan_facts(path))
@@ -205,7 +202,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("folder", nargs="?", type=Path, default=DEFAULT_FOLDER)
     parser.add_argument("--time-limit", type=float, default=60.0)
     parser.add_argument("--reference-time-limit", type=float, default=60.0)
-    parser.add_argument("--only", help="file-name glob or substring")
+    parser.add_argument("--only", help=ONLY_HELP)
     parser.add_argument("--skip-reference", action="store_true")
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--json", action="store_true", help="print JSON instead of the table")

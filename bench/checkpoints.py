@@ -25,7 +25,6 @@ exactly what a rule changes. Seconds depend on the machine and its load.
 from __future__ import annotations
 
 import argparse
-import fnmatch
 import math
 import sys
 import threading
@@ -34,7 +33,8 @@ from pathlib import Path
 
 import numpy as np
 
-DEFAULT_FOLDER = Path(__file__).resolve().parents[2] / "shared" / "floorplans"
+from plans import DEFAULT_FOLDER, ONLY_HELP, plan_files
+
 MARKS = {"5%": 0, "40%": 7, "50%": 9, "60%": 11}
 """The progress marks shown (indices into a run's progress, one every 5 %)."""
 REPAIR_SECONDS = 12.5
@@ -160,7 +160,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("folder", nargs="?", default=str(DEFAULT_FOLDER))
     parser.add_argument("--first", type=int, default=1000, help="the first kernel seed")
     parser.add_argument("--runs", type=int, default=40, help="runs a plan")
-    parser.add_argument("--only", help="plans whose name contains this (comma-separated, fnmatch patterns)")
+    parser.add_argument("--only", help=ONLY_HELP)
     parser.add_argument("--rule", action="append", default=[], help="a relative checkpoint rule to score, "
                         "e.g. 0.4:0.25+0.5:0.12 (repeatable)")
     parser.add_argument("--out", help="also write the table here")
@@ -171,9 +171,7 @@ def main(argv: list[str] | None = None) -> int:
 
     rules = {rule: parse_rule(rule) for rule in args.rule}
     lines = []
-    for path in sorted(Path(args.folder).glob("*.xml")):
-        if args.only and not any(fnmatch.fnmatch(path.stem, f"*{p}*") for p in args.only.split(",")):
-            continue
+    for path in plan_files(args.folder, args.only):
         spec, _ = import_building(path)
         if spec is None or satellites.Satellites.of(lshape.seeds_spec(spec)) is None:
             continue

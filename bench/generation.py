@@ -29,7 +29,6 @@ depend on the machine and its load; say so when quoting them.
 from __future__ import annotations
 
 import argparse
-import fnmatch
 import json
 import statistics
 import sys
@@ -37,8 +36,8 @@ import time
 from pathlib import Path
 
 from layoutdsl.devtools.isolation import run_isolated
+from plans import DEFAULT_FOLDER, ONLY_HELP, plan_files
 
-DEFAULT_FOLDER = Path(__file__).resolve().parents[2] / "shared" / "floorplans"
 GRACE_SECONDS = 30.0
 """A solve gets this long past its time limit before its process is killed."""
 
@@ -287,18 +286,13 @@ def format_variants(plan: str, result: dict) -> str:
     return "\n".join(lines)
 
 
-def _matches(name: str, only: str | None) -> bool:
-    """Whether a plan's file name matches one of --only's comma-separated patterns."""
-    return not only or any(fnmatch.fnmatch(name, p) or p in name for p in only.split(","))
-
-
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("folder", nargs="?", type=Path, default=DEFAULT_FOLDER,
                         help="folder of building XML files (default ../shared/floorplans)")
     parser.add_argument("--time-limit", type=float, default=60.0, help="seconds per compile (default 60)")
-    parser.add_argument("--only", metavar="PATTERN", help="plans whose file name matches (glob or substring)")
+    parser.add_argument("--only", metavar="PATTERN", help=ONLY_HELP)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--seeds", type=int, default=1, metavar="N",
                         help="compile each plan at seeds SEED..SEED+N-1 (default 1)")
@@ -321,9 +315,7 @@ def main(argv: list[str] | None = None) -> int:
     # every mode times compiles: none should pay numba's one-off compile of the annealer
     isolated(_warm_annealer, limit=WARM_SECONDS)
     if args.variants:
-        for path in sorted(args.folder.glob("*.xml")):
-            if not _matches(path.name, args.only):
-                continue
+        for path in plan_files(args.folder, args.only):
             result = isolated(_variants_of_plan, str(path), args.variants, args.seed,
                               args.time_limit, args.workers, limit=args.time_limit * args.variants)
             emit(json.dumps({"plan": path.stem, **result}) if args.json
@@ -340,9 +332,7 @@ def main(argv: list[str] | None = None) -> int:
         rows = []
         if not args.json:
             emit(header())
-        for path in sorted(args.folder.glob("*.xml")):
-            if not _matches(path.name, args.only):
-                continue
+        for path in plan_files(args.folder, args.only):
             plan_rows = []
             for seed in range(args.seed, args.seed + max(1, args.seeds)):
                 row = {"plan": path.stem if args.seeds <= 1 else f"{path.stem} s{seed}"}

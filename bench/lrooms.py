@@ -25,19 +25,9 @@ from layoutdsl.importer import ImportOptions
 from layoutdsl.importer.convert import FIT_GAIN, convert
 from layoutdsl.importer.lshape import fit_l
 from layoutdsl.importer.reader import read_building
-
-ROOT = Path(__file__).resolve().parent.parent
-PLANS = ROOT.parent / "shared" / "floorplans"
+from plans import DEFAULT_FOLDER, ONLY_HELP, plan_files
 
 ACCEPTANCE = ("school_scuolasconosciuta2", "school_stjoseph_scatholichighschool", "school_Neulengbach1")
-
-
-def _plans(folder: Path, only: str | None) -> list[Path]:
-    paths = sorted(folder.glob("*.xml"))
-    if only:
-        wanted = set(only.split(","))
-        paths = [p for p in paths if p.stem in wanted]
-    return paths
 
 
 def _building(path: Path):
@@ -220,8 +210,8 @@ def _format_report(data) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("what", choices=("fit", "compile", "realism"))
-    parser.add_argument("--plans", type=Path, default=PLANS)
-    parser.add_argument("--only", help="comma-separated plan names (default: all, or the acceptance three)")
+    parser.add_argument("--plans", type=Path, default=DEFAULT_FOLDER)
+    parser.add_argument("--only", help=ONLY_HELP + " (compile: the acceptance three)")
     parser.add_argument("--seeds", type=int, default=1)
     parser.add_argument("--variants", type=int, default=5)
     parser.add_argument("--time-limit", type=float, default=60.0)
@@ -236,12 +226,12 @@ def main(argv: list[str] | None = None) -> int:
         print(f"no plans at {args.plans}", file=sys.stderr)
         return 2
     if args.what == "fit":
-        lines = fit_table(_plans(args.plans, args.only))
+        lines = fit_table(plan_files(args.plans, args.only))
     elif args.what == "compile":
-        lines = compile_table(_plans(args.plans, args.only or ",".join(ACCEPTANCE)), args.seeds, args.time_limit,
+        lines = compile_table(plan_files(args.plans, args.only or ",".join(ACCEPTANCE)), args.seeds, args.time_limit,
                               not args.first, args.keep_arrangement)
     else:
-        lines = realism_table(_plans(args.plans, args.only), args.variants, args.time_limit, args.workdir)
+        lines = realism_table(plan_files(args.plans, args.only), args.variants, args.time_limit, args.workdir)
     text = "\n".join(lines) + "\n"
     print(text)
     if args.out:

@@ -15,7 +15,7 @@ import argparse
 import time
 from pathlib import Path
 
-DEFAULT_FOLDER = Path(__file__).resolve().parents[2] / "shared" / "floorplans"
+from plans import DEFAULT_FOLDER, plan_files
 
 
 def main() -> int:
@@ -29,7 +29,7 @@ def main() -> int:
     parser.add_argument("folder", nargs="?", type=Path, default=DEFAULT_FOLDER)
     parser.add_argument("--resolution", type=float, default=0.05)
     args = parser.parse_args()
-    files = sorted(args.folder.glob("*.xml"))
+    files = plan_files(args.folder)
     print(f"{'plan':38s} {'rooms':>5s} {'closed':>6s} {'joins':>5s} {'opened':>6s} {'walled':>6s} "
           f"{'before':>6s} {'after':>5s} {'s':>5s}  left as it is")
     before = after = 0

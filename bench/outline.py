@@ -21,14 +21,13 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
-import fnmatch
 import math
 import random
 import statistics
 import sys
 from pathlib import Path
 
-DEFAULT_FOLDER = Path(__file__).resolve().parents[2] / "shared" / "floorplans"
+from plans import DEFAULT_FOLDER, ONLY_HELP, plan_files
 
 
 def _with_aspect(spec, aspect: float | None):
@@ -61,7 +60,7 @@ def differences(spec, original: dict[str, tuple[float, float]], seeds: int, aspe
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("folder", nargs="?", type=Path, default=DEFAULT_FOLDER)
-    parser.add_argument("--only", metavar="PATTERN", help="plans whose file name matches (glob or substring)")
+    parser.add_argument("--only", metavar="PATTERN", help=ONLY_HELP)
     parser.add_argument("--seeds", type=int, default=20)
     parser.add_argument("--aspects", default="2,1",
                         help="width/height ratios of the same-area boundaries tried besides the original")
@@ -80,9 +79,7 @@ def main(argv: list[str] | None = None) -> int:
     from layoutdsl.evaluate.difference import building_centres
     from layoutdsl.importer import import_building, read_building
 
-    for path in sorted(Path(args.folder).glob("*.xml")):
-        if args.only and not any(fnmatch.fnmatch(path.stem, f"*{p}*") for p in args.only.split(",")):
-            continue
+    for path in plan_files(args.folder, args.only):
         spec, _ = import_building(path)
         if spec is None:
             emit(f"{path.stem:34} import failed")

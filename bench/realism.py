@@ -27,7 +27,8 @@ import sys
 import tempfile
 from pathlib import Path
 
-FOLDER = Path(__file__).resolve().parents[2] / "shared" / "floorplans"
+from plans import DEFAULT_FOLDER
+
 PLANS = "school_Sabadell3,school_Neulengbach1,school_wilbraham"
 
 
@@ -76,7 +77,7 @@ def _fmt(value, digits=3) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--plans", default=PLANS, help="comma-separated plan names (file stems)")
-    parser.add_argument("--folder", type=Path, default=FOLDER)
+    parser.add_argument("--folder", type=Path, default=DEFAULT_FOLDER)
     parser.add_argument("--variants", type=int, default=5)
     parser.add_argument("--work", type=Path, help="keep the compiled plans and reports here")
     parser.add_argument("--out", type=Path, help="also write the table to this file")
