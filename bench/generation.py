@@ -24,6 +24,11 @@ depend on the machine and its load; say so when quoting them.
                                [--seeds 1] [--json] [--out FILE]
     python bench/generation.py --throughput school_wilbraham [--minutes 1] [--workers 2]
     python bench/generation.py --variants 5 --only Sabadell3,Neulengbach1,wilbraham
+    python bench/generation.py --only stjoseph --seeds 8 --renamed
+
+`--renamed` compiles each plan with its rooms renamed and its lines shuffled (renamed()):
+whether the arrangement owes anything to the names and order an import takes from the
+original drawing.
 """
 
 from __future__ import annotations
@@ -110,12 +115,52 @@ def _warm_annealer() -> dict:
     return {"warmed": anneal_geometry(spec, 0) is not None and satellites_geometry(spec, 0) is not None}
 
 
-def _compile_plan(path: str, time_limit: float, seed: int) -> dict:
+def renamed(spec, centres: dict, seed: int):
+    """`spec` with its rooms renamed (each name to another of the same first letter) and its
+    rooms, arms and adjacencies in another order, all drawn from `seed`, and the original's
+    centres under the new names. A generator that read the original through its names or
+    lines (an imported plan's follow its drawing) would score lower than on the spec as
+    imported; one that reads only the graph, the sizes and the boundary scores alike."""
+    import random
+    from dataclasses import replace
+
+    if spec.positions or spec.connections or spec.clusters or spec.hints:
+        raise ValueError("renamed: only for specs of rooms, arms and adjacencies")
+    draw = random.Random(seed)
+    by_letter: dict[str, list[str]] = {}
+    for room in spec.rooms:
+        by_letter.setdefault(room.id[0], []).append(room.id)
+    new_name = {}
+    for names in by_letter.values():
+        shuffled = list(names)
+        draw.shuffle(shuffled)
+        new_name.update(zip(names, shuffled))
+
+    def shuffled(items):
+        items = list(items)
+        draw.shuffle(items)
+        return tuple(items)
+
+    spec = replace(
+        spec,
+        rooms=shuffled(replace(room, id=new_name[room.id]) for room in spec.rooms),
+        arms=shuffled(replace(arm, room=new_name[arm.room]) for arm in spec.arms),
+        adjacencies=shuffled(replace(adj, a=new_name[adj.a], b=new_name[adj.b]) for adj in spec.adjacencies))
+    return spec, {new_name.get(room_id, room_id): centre for room_id, centre in centres.items()}
+
+
+RENAME_SEED = 100
+"""--renamed draws plan seed S's names and order from RENAME_SEED + S."""
+
+
+def _compile_plan(path: str, time_limit: float, seed: int, rename: bool = False) -> dict:
     from layoutdsl.compile import compile_spec
     from layoutdsl.compile.cycles import cycle_rank
     from layoutdsl.solve import SolveOptions
 
     spec, area, original_fill, centres = _original(Path(path))
+    if rename:
+        spec, centres = renamed(spec, centres, RENAME_SEED + seed)
     row = {"rooms": len(spec.rooms), "cycles": cycle_rank(spec)}
     began = time.monotonic()
     result = compile_spec(spec, SolveOptions(time_limit=time_limit, seed=seed, quiet=True),
@@ -140,7 +185,7 @@ def isolated(function, *args, limit: float) -> dict:
 
 
 COLUMNS = (
-    ("plan", 36, "{}"), ("rooms", 5, "{}"), ("cycles", 6, "{}"), ("verified", 8, "{}"),
+    ("plan", 44, "{}"), ("rooms", 5, "{}"), ("cycles", 6, "{}"), ("verified", 8, "{}"),
     ("first", 7, "{:.2f}"), ("seconds", 7, "{:.1f}"), ("difference", 6, "{:.3f}"),
     ("area_ratio", 6, "{:.3f}"), ("fill", 6, "{:.3f}"), ("original_fill", 8, "{:.3f}"),
 )
@@ -302,6 +347,8 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--workers", type=int, default=2, help="variant processes (default 2)")
     parser.add_argument("--variants", type=int, metavar="N",
                         help="compile N graph variants of each plan (--only) instead of one layout")
+    parser.add_argument("--renamed", action="store_true",
+                        help="rename each plan's rooms and shuffle its lines first (see renamed())")
     parser.add_argument("--json", action="store_true", help="print JSON rows instead of the table")
     parser.add_argument("--out", type=Path, help="also write the table (or JSON) to this file")
     args = parser.parse_args(argv)
@@ -335,8 +382,9 @@ def main(argv: list[str] | None = None) -> int:
         for path in plan_files(args.folder, args.only):
             plan_rows = []
             for seed in range(args.seed, args.seed + max(1, args.seeds)):
-                row = {"plan": path.stem if args.seeds <= 1 else f"{path.stem} s{seed}"}
-                row.update(isolated(_compile_plan, str(path), args.time_limit, seed,
+                row = {"plan": (path.stem if args.seeds <= 1 else f"{path.stem} s{seed}")
+                       + (" renamed" if args.renamed else "")}
+                row.update(isolated(_compile_plan, str(path), args.time_limit, seed, args.renamed,
                                     limit=args.time_limit))
                 plan_rows.append(row)
                 emit(json.dumps(row) if args.json else format_row(row))
