@@ -132,9 +132,9 @@ def renamed(spec, centres: dict, seed: int):
         by_letter.setdefault(room.id[0], []).append(room.id)
     new_name = {}
     for names in by_letter.values():
-        shuffled = list(names)
-        draw.shuffle(shuffled)
-        new_name.update(zip(names, shuffled))
+        others = list(names)
+        draw.shuffle(others)
+        new_name.update(zip(names, others))
 
     def shuffled(items):
         items = list(items)
@@ -368,7 +368,7 @@ def main(argv: list[str] | None = None) -> int:
             emit(json.dumps({"plan": path.stem, **result}) if args.json
                  else format_variants(path.stem, result))
     elif args.throughput:
-        matches = sorted(p for p in args.folder.glob("*.xml") if args.throughput in p.name)
+        matches = plan_files(args.folder, args.throughput)
         if not matches:
             print(f"no plan matching `{args.throughput}` in {args.folder}", file=sys.stderr)
             return 2
