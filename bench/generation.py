@@ -60,7 +60,7 @@ def fill(rects) -> float:
     return sum(r[2] * r[3] for r in rects) / max((x1 - x0) * (y1 - y0), 1e-9)
 
 
-def _original(path: Path):
+def import_original(path: Path):
     """(spec without hints, original room area, original fill, original centres)."""
     from layoutdsl.evaluate.difference import building_centres
     from layoutdsl.importer import import_building, read_building
@@ -158,7 +158,7 @@ def _compile_plan(path: str, time_limit: float, seed: int, rename: bool = False)
     from layoutdsl.compile.cycles import cycle_rank
     from layoutdsl.solve import SolveOptions
 
-    spec, area, original_fill, centres = _original(Path(path))
+    spec, area, original_fill, centres = import_original(Path(path))
     if rename:
         spec, centres = renamed(spec, centres, RENAME_SEED + seed)
     row = {"rooms": len(spec.rooms), "cycles": cycle_rank(spec)}
@@ -257,7 +257,7 @@ def throughput(path: Path, minutes: float, workers: int, time_limit: float,
     from layoutdsl.layout.difference import layout_centres, pairwise_differences
     from layoutdsl.solve import SolveOptions
 
-    spec, area, original_fill, centres = _original(path)
+    spec, area, original_fill, centres = import_original(path)
     kept_at: list[float] = []
     began = time.monotonic()
     result = compile_variants(spec, n, seed=0, options=SolveOptions(time_limit=time_limit, quiet=True),
@@ -296,7 +296,7 @@ def _variants_of_plan(path: str, n: int, seed: int, time_limit: float, workers: 
     from layoutdsl.compile.variants import compile_variants
     from layoutdsl.layout.difference import layout_centres, pairwise_differences
 
-    spec, area, original_fill, centres = _original(Path(path))
+    spec, area, original_fill, centres = import_original(Path(path))
     began = time.monotonic()
     result = compile_variants(spec, n, seed=seed, workers=workers,
                               options=SolveOptions(time_limit=time_limit, quiet=True))
