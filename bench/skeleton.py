@@ -107,6 +107,14 @@ def _number(value) -> str:
     return "-" if value is None else f"{value:.3f}"
 
 
+def format_row(plan: str, rooms: int, aspect: float, seed: int, row: dict, kept: list[float]) -> str:
+    """One line of the table: a compiled row (_compiled's) beside the plan's corridors-kept draws."""
+    compiled = row.get("difference") if row.get("verified") else None
+    return (f"{plan[:36]:36} {rooms:5d} {aspect:6.1f} {seed:4d} {_number(compiled):>8}"
+            f" {_number(row.get('corridor_difference')):>9} {_number(row.get('area_ratio')):>5}"
+            f" {statistics.median(kept):11.3f} {kept[-1]:8.3f}")
+
+
 HEADER = (f"{'plan':36} {'rooms':>5} {'aspect':>6} {'seed':>4} {'compiled':>8} {'corridors':>9} {'area':>5}"
           f" {'kept median':>11} {'kept max':>8}")
 
@@ -119,26 +127,28 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seeds", type=int, default=1, help="seeds compiled a plan: SEED..SEED+N-1")
     parser.add_argument("--draws", type=int, default=200, help="random corridors-kept buildings a plan")
     parser.add_argument("--time-limit", type=float, default=60.0)
-    parser.add_argument("--out", help="also write the table to this file")
+    parser.add_argument("--out", help="also write the table to this file, a row at a time")
     args = parser.parse_args(argv)
 
-    lines = [HEADER]
-    print(HEADER, flush=True)
+    # each row goes to --out as it comes: a run of several minutes a plan keeps what it has done
+    out = open(args.out, "w") if args.out else None
+
+    def emit(line: str) -> None:
+        print(line, flush=True)
+        if out is not None:
+            out.write(line + "\n")
+            out.flush()
+
+    emit(HEADER)
     for path in plan_files(args.folder, args.only):
         spec, _, _, centres = import_original(path)
         kept = corridors_kept(spec, centres, args.draws, seed=0)
         aspect = max(spec.boundary.w, spec.boundary.h) / min(spec.boundary.w, spec.boundary.h)
         for seed in range(args.seed, args.seed + args.seeds):
             row = isolated(_compiled, str(path), seed, args.time_limit, limit=args.time_limit)
-            compiled = row.get("difference") if row.get("verified") else None
-            line = (f"{path.stem[:36]:36} {len(spec.rooms):5d} {aspect:6.1f} {seed:4d} {_number(compiled):>8}"
-                    f" {_number(row.get('corridor_difference')):>9} {_number(row.get('area_ratio')):>5}"
-                    f" {statistics.median(kept):11.3f}"
-                    f" {kept[-1]:8.3f}")
-            lines.append(line)
-            print(line, flush=True)
-    if args.out:
-        Path(args.out).write_text("\n".join(lines) + "\n")
+            emit(format_row(path.stem, len(spec.rooms), aspect, seed, row, kept))
+    if out is not None:
+        out.close()
     return 0
 
 
