@@ -103,9 +103,12 @@ def run_dask(jobs: list[Job], workers: int, running: Running, address: str | Non
     try:
         if address is None:
             with dask.config.set({"distributed.scheduler.allowed-failures": LOCAL_ALLOWED_FAILURES}):
+                # no dashboard; the scheduler's HTTP server (health checks) still starts, on a
+                # free port rather than 8787, which another scheduler on the machine may hold
                 cluster = distributed.LocalCluster(
                     n_workers=workers, threads_per_worker=1, processes=True,
-                    dashboard_address=None, host="127.0.0.1", silence_logs=50)
+                    dashboard_address=None, scheduler_kwargs={"dashboard_address": ":0"},
+                    host="127.0.0.1", silence_logs=50)
             client = distributed.Client(cluster)
         else:
             try:

@@ -234,8 +234,9 @@ def test_cli_records_a_plan_that_does_not_import_and_exits_3(tmp_path, capsys):
 def test_dask_cluster_by_address(tmp_path):
     distributed = pytest.importorskip("distributed")
     # default worker settings, as on a cluster someone else started
+    # its HTTP server on a free port: another test run's scheduler may hold 8787
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None,
-                                  host="127.0.0.1") as cluster:
+                                  scheduler_kwargs={"dashboard_address": ":0"}, host="127.0.0.1") as cluster:
         summary = run_batch(tiny_jobs(2), tmp_path, engine="dask", address=cluster.scheduler_address)
     assert (summary.done, summary.failed) == (2, 0)
     for record in manifest_lines(tmp_path):
