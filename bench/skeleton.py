@@ -32,29 +32,23 @@ import argparse
 import random
 import statistics
 import sys
-from pathlib import Path
 
 from generation import import_original, isolated
 from plans import DEFAULT_FOLDER, ONLY_HELP, plan_files
 
-CORRIDOR = "C"
-"""The room type of corridors, halls and lobbies (thesis §5.4)."""
-
-
 def parents(spec) -> dict[str, str]:
     """Each non-corridor room with a door: the room it hangs off (its corridor neighbour with
     the most doors, else its neighbour with the most; ties by id)."""
-    kind = {room.id: room.rtype for room in spec.rooms}
-    neighbours: dict[str, set[str]] = {room.id: set() for room in spec.rooms}
-    for adjacency in spec.adjacencies:
-        neighbours[adjacency.a].add(adjacency.b)
-        neighbours[adjacency.b].add(adjacency.a)
+    from layoutdsl.compile.generate import room_graph
+
+    graph = room_graph(spec)
+    corridor = {room.id: room.is_corridor for room in spec.rooms}
     chosen = {}
-    for room, around in neighbours.items():
-        if kind[room] == CORRIDOR or not around:
+    for room in graph:
+        if corridor[room] or not graph[room]:
             continue
-        corridors = [n for n in around if kind[n] == CORRIDOR] or sorted(around)
-        chosen[room] = max(corridors, key=lambda n: (len(neighbours[n]), n))
+        candidates = [n for n in graph[room] if corridor[n]] or list(graph[room])
+        chosen[room] = max(candidates, key=lambda n: (graph.degree(n), n))
     return chosen
 
 
@@ -81,21 +75,21 @@ def corridors_kept(spec, centres: dict, draws: int, seed: int) -> list[float]:
     return sorted(values)
 
 
-def _compiled(path: str, seed: int, time_limit: float) -> dict:
-    """Seed `seed`'s first verified layout of the plan: its difference from the original, its
-    corridors' alone, and its room area over the original's."""
+def _compiled(spec, area: float, centres: dict, seed: int, time_limit: float) -> dict:
+    """Seed `seed`'s first verified layout of the imported plan (import_original's spec, room
+    area and centres; the forked process inherits them): its difference from the original,
+    its corridors' alone, and its room area over the original's."""
     from layoutdsl.compile import compile_spec
     from layoutdsl.layout.difference import difference, layout_centres
     from layoutdsl.layout.verify import verify
     from layoutdsl.solve import SolveOptions
 
-    spec, area, _, centres = import_original(Path(path))
     result = compile_spec(spec, SolveOptions(time_limit=time_limit, seed=seed, quiet=True, search=False),
                           explain_infeasible=False)
     if result.layout is None or verify(spec, result.layout):
         return {"verified": False}
     placed = layout_centres(result.layout)
-    corridors = [room.id for room in spec.rooms if room.rtype == CORRIDOR]
+    corridors = [room.id for room in spec.rooms if room.is_corridor]
     row = {"verified": True, "difference": difference(placed, centres), "corridors": len(corridors),
            "area_ratio": sum(room.area for room in result.layout.rooms) / area}
     if len(corridors) >= 3:
@@ -141,11 +135,11 @@ def main(argv: list[str] | None = None) -> int:
 
     emit(HEADER)
     for path in plan_files(args.folder, args.only):
-        spec, _, _, centres = import_original(path)
+        spec, area, _, centres = import_original(path)
         kept = corridors_kept(spec, centres, args.draws, seed=0)
         aspect = max(spec.boundary.w, spec.boundary.h) / min(spec.boundary.w, spec.boundary.h)
         for seed in range(args.seed, args.seed + args.seeds):
-            row = isolated(_compiled, str(path), seed, args.time_limit, limit=args.time_limit)
+            row = isolated(_compiled, spec, area, centres, seed, args.time_limit, limit=args.time_limit)
             emit(format_row(path.stem, len(spec.rooms), aspect, seed, row, kept))
     if out is not None:
         out.close()
