@@ -1,0 +1,104 @@
+"""`layoutdsl explain CODE`: print a diagnostic code's page, as `ruff rule` does.
+
+The pages are package data (`layoutdsl/diagnostics/pages/CODE.md`), the same Markdown the
+docs site renders as its per-code reference, so the command works without the docs and the
+two cannot disagree.
+"""
+
+from __future__ import annotations
+
+import argparse
+import difflib
+import json
+import re
+import sys
+from importlib import resources
+
+from layoutdsl.diagnostics import exitcodes
+
+_CODE = re.compile(r"[EW]\d{3}")
+
+
+def pages() -> dict[str, str]:
+    """Every code's page: code -> Markdown text, in code order."""
+    folder = resources.files("layoutdsl.diagnostics") / "pages"
+    found = {}
+    for entry in folder.iterdir():
+        name = entry.name
+        if name.endswith(".md") and _CODE.fullmatch(name[:-3]):
+            found[name[:-3]] = entry.read_text(encoding="utf-8")
+    return dict(sorted(found.items()))
+
+
+def title(page: str) -> str:
+    """`E201: minimum larger than maximum` -> `minimum larger than maximum`."""
+    first = page.split("\n", 1)[0].lstrip("# ")
+    return first.split(": ", 1)[1] if ": " in first else first
+
+
+def severity(page: str) -> str:
+    """The page's `Severity: error.` line."""
+    found = re.search(r"^Severity: (\w+)\.", page, re.M)
+    return found.group(1) if found else "error"
+
+
+def suggestion(wrong: str, codes: list[str]) -> str | None:
+    """The nearest existing code: letters typed for digits (`E2O1`), the other severity letter
+    (`W102` for `E102`), then the closest by edit distance."""
+    normal = wrong.strip().upper()
+    normal = normal[:1] + normal[1:].translate(str.maketrans("OIL", "011"))
+    for letter in "EW":
+        if len(normal) == 4 and letter + normal[1:] in codes:
+            return letter + normal[1:]
+    close = difflib.get_close_matches(normal, codes, n=1, cutoff=0.5)
+    return close[0] if close else None
+
+
+def add_parser(subparsers) -> argparse.ArgumentParser:
+    """Register the `explain` subcommand."""
+    parser = subparsers.add_parser(
+        "explain",
+        help="print what a diagnostic code means and how to fix it",
+        description="Print the documentation page of a diagnostic code (E201, W301, ...): what it "
+        "reports, why that is a problem, and an example. Without CODE, list every code.",
+        epilog="examples:\n  layoutdsl explain E102\n  layoutdsl explain            # every code and its title\n"
+        "  layoutdsl explain W906 --format json\n\n" + exitcodes.epilog((exitcodes.OK, exitcodes.USAGE)),
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
+    parser.add_argument("code", nargs="?", metavar="CODE", help="a code such as E102 (case does not matter)")
+    parser.add_argument(
+        "--format", choices=("text", "json"), default="text",
+        help="text: the page as Markdown (default); json: {code, severity, title, page}",
+    )  # fmt: skip
+    parser.set_defaults(run=run)
+    return parser
+
+
+def run(args: argparse.Namespace) -> int:
+    """Print one page (exit 0), the list of codes (exit 0), or a suggestion (exit 2)."""
+    known = pages()
+    if args.code is None:
+        if args.format == "json":
+            rows = [{"code": c, "severity": severity(p), "title": title(p)} for c, p in known.items()]
+            print(json.dumps(rows, indent=2, ensure_ascii=False))
+        else:
+            for code, page in known.items():
+                print(f"{code}  {severity(page):<7}  {title(page)}")
+        return exitcodes.OK
+    code = args.code.strip().upper()
+    if code not in known:
+        near = suggestion(code, list(known))
+        hint = f"; did you mean `{near}`?" if near else ""
+        if args.format == "json":
+            print(json.dumps({"status": exitcodes.STATUS.get(exitcodes.USAGE, "error"), "code": args.code,
+                              "error": f"no diagnostic code `{args.code}`", "suggestion": near}))
+        print(f"layoutdsl explain: no diagnostic code `{args.code}`{hint}\n"
+              "  `layoutdsl explain` lists every code", file=sys.stderr)
+        return exitcodes.USAGE
+    page = known[code]
+    if args.format == "json":
+        print(json.dumps({"code": code, "severity": severity(page), "title": title(page), "page": page},
+                         indent=2, ensure_ascii=False))
+    else:
+        sys.stdout.write(page if page.endswith("\n") else page + "\n")
+    return exitcodes.OK
