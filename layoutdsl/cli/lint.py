@@ -1,30 +1,34 @@
-"""`layoutdsl lint FILE...`: report every problem in specs (diagnostics go to stdout)."""
+"""`layoutdsl lint PATH...`: report every problem in specs (diagnostics go to stdout)."""
 
 from __future__ import annotations
 
 import argparse
 import sys
 
-from layoutdsl.diagnostics import exitcodes
 from layoutdsl.api import lint_source, read_source
-from layoutdsl.diagnostics.render import render_concise, render_full, render_json, summary
+from layoutdsl.cli.output import Output, add_command, add_output_arguments, expand_specs
+from layoutdsl.diagnostics import exitcodes
+from layoutdsl.diagnostics.render import summary
 from layoutdsl.diagnostics.source import Source
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register the `lint` subcommand."""
-    parser = subparsers.add_parser(
-        "lint",
+    parser = add_command(
+        subparsers, "lint",
         help="check specs and report every problem",
-        description="Check layout specs and report every problem with its location, code and a hint.",
-        epilog=exitcodes.EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    parser.add_argument("files", nargs="+", metavar="FILE", help="spec files; `-` reads standard input")
-    parser.add_argument(
-        "--format", choices=("full", "concise", "json"), default="full",
-        help="full: code excerpts and hints (default); concise: one line each; json: for tools",
+        description="Check layout specs and report every problem with its location, code and a "
+        "hint. A folder means every `*.lay` file under it, recursively. Diagnostics go to "
+        "standard output; `layoutdsl explain CODE` tells more about a code.",
+        examples=[
+            ("check one spec", "layoutdsl lint specs/office_small.lay"),
+            ("check every spec under a folder, one line per problem", "layoutdsl lint --format concise specs/"),
+            ("the result as JSON for a script", "layoutdsl lint --format json specs/office_small.lay"),
+            ("check an editor buffer", "layoutdsl lint --stdin-filename mine.lay - < mine.lay"),
+        ],
     )  # fmt: skip
+    parser.add_argument("files", nargs="+", metavar="PATH",
+                        help="spec files or folders of them; `-` reads standard input")
     parser.add_argument(
         "--stdin-filename", metavar="NAME", default=None,
         help="the name messages use for standard input (default `<stdin>`)",
@@ -32,6 +36,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     parser.add_argument(
         "--warnings-as-errors", action="store_true", help="exit with 1 when there are only warnings"
     )
+    add_output_arguments(parser, diagnostics=True)
     parser.set_defaults(run=run)
     return parser
 
@@ -46,30 +51,39 @@ def read_input(path: str, stdin_filename: str | None) -> Source:
 
 def run(args: argparse.Namespace) -> int:
     """Lint every file; exit 0 clean, 1 errors, 2 when a file cannot be read."""
+    out = Output("lint", args)
     sources: dict[str, Source] = {}
     diagnostics = []
-    io_failed = False
-    for path in args.files:
+    paths, empty = expand_specs(args.files)
+    unreadable = 0
+    for folder in empty:
+        out.error(f"no `.lay` files under `{folder}`", kind="io", path=folder)
+        unreadable += 1
+    for path in paths:
+        out.reading(path)
         try:
             source = read_input(path, args.stdin_filename)
         except (OSError, ValueError) as error:
-            reason = error.strerror if isinstance(error, OSError) and error.strerror else str(error)
-            if isinstance(error, UnicodeDecodeError):
-                reason = f"not UTF-8 text (byte {error.start})"
-            print(f"layoutdsl lint: cannot read {path}: {reason}", file=sys.stderr)
-            io_failed = True
+            out.cannot_read(path, error)
+            unreadable += 1
             continue
         sources[source.path] = source
         _, found = lint_source(source)
         diagnostics.extend(found)
-    if args.format == "json":
-        sys.stdout.write(render_json(diagnostics))
+    out.diagnostics(diagnostics, sources, stream="stdout")
+    if out.format == "text" and diagnostics:
+        out.stdout.write("\n")  # a blank line between the last excerpt and the summary
+    # never "no problems found" about files that were not read
+    line = summary(diagnostics)
+    if unreadable:
+        line = (f"{line} in the {len(sources)} files read" if diagnostics else f"checked {len(sources)} files")
+        line += f"; {unreadable} could not be read"
+    elif out.verbose:
+        line += f" in {len(sources)} files"
+    out.summary(line)
+    if unreadable:
+        code = exitcodes.USAGE
     else:
-        text = render_full(diagnostics, sources) if args.format == "full" else render_concise(diagnostics)
-        if text:
-            sys.stdout.write(text + ("\n" if args.format == "full" else ""))
-        print(summary(diagnostics))
-    if io_failed:
-        return exitcodes.USAGE
-    failing = [d for d in diagnostics if d.is_error or args.warnings_as_errors]
-    return exitcodes.SPEC_ERRORS if failing else exitcodes.OK
+        failing = [d for d in diagnostics if d.is_error or args.warnings_as_errors]
+        code = exitcodes.SPEC_ERRORS if failing else exitcodes.OK
+    return out.finish(code, files=list(sources))

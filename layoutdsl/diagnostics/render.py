@@ -43,13 +43,23 @@ def _display(line: str, upto: int) -> tuple[str, int]:
     return "".join(shown), prefix_width
 
 
-def render_one(diagnostic: Diagnostic, source: Source | None = None) -> str:
-    """One diagnostic in ruff's full format (rustc wording), ending with a newline."""
+_ANSI = {"error": "1;31", "warning": "1;33", "gutter": "1;34", "help": "1;36", "bold": "1"}
+
+
+def _paint(text: str, style: str, colour: bool) -> str:
+    """ANSI colour for a terminal (the caller decides: see layoutdsl.cli.output.use_colour)."""
+    return f"\x1b[{_ANSI[style]}m{text}\x1b[0m" if colour and text else text
+
+
+def render_one(diagnostic: Diagnostic, source: Source | None = None, *, colour: bool = False) -> str:
+    """One diagnostic in ruff's full format (rustc wording), ending with a newline.
+    `colour` adds ANSI colours (severity, gutter, carets, help) for a terminal."""
     d = diagnostic
     span = d.span
-    out = [f"{d.severity.value}[{d.code}]: {d.message}"]
+    tone = d.severity.value
+    out = [f"{_paint(f'{tone}[{d.code}]', tone, colour)}{_paint(': ' + d.message, 'bold', colour)}"]
     gutter = " " * len(str(span.line))
-    out.append(f"{gutter}--> {d.filename}:{span.line}:{span.col}")
+    out.append(f"{gutter}{_paint('-->', 'gutter', colour)} {d.filename}:{span.line}:{span.col}")
     lines = _source_lines(source) if source is not None else []
     if 1 <= span.line <= len(lines):
         text = lines[span.line - 1]
@@ -57,20 +67,22 @@ def render_one(diagnostic: Diagnostic, source: Source | None = None) -> str:
         end_col = span.end_col if span.end_line == span.line else len(text) + 1
         _, end = _display(text, max(end_col - 1, span.col))
         carets = "^" * max(1, end - start)
-        out.append(f"{gutter} |")
-        out.append(f"{span.line} | {shown}".rstrip())
-        out.append(f"{gutter} | {' ' * start}{carets}{(' ' + d.label) if d.label else ''}")
-        out.append(f"{gutter} |")
+        bar = _paint("|", "gutter", colour)
+        out.append(f"{gutter} {bar}")
+        out.append(f"{_paint(str(span.line), 'gutter', colour)} {bar} {shown}".rstrip())
+        marks = carets + ((" " + d.label) if d.label else "")
+        out.append(f"{gutter} {bar} {' ' * start}{_paint(marks, tone, colour)}")
+        out.append(f"{gutter} {bar}")
     for note in d.notes:
-        out.append(f"{gutter} = note: {note}")
+        out.append(f"{gutter} {_paint('=', 'gutter', colour)} {_paint('note', 'bold', colour)}: {note}")
     if d.help:
-        out.append(f"help: {d.help}")
+        out.append(f"{_paint('help', 'help', colour)}: {d.help}")
     return "\n".join(out) + "\n"
 
 
-def render_full(diagnostics: Iterable[Diagnostic], sources: Mapping[str, Source]) -> str:
+def render_full(diagnostics: Iterable[Diagnostic], sources: Mapping[str, Source], *, colour: bool = False) -> str:
     """Every diagnostic in full format, sorted by position, separated by blank lines."""
-    return "\n".join(render_one(d, sources.get(d.filename)) for d in _sorted(diagnostics))
+    return "\n".join(render_one(d, sources.get(d.filename), colour=colour) for d in _sorted(diagnostics))
 
 
 def render_concise(diagnostics: Iterable[Diagnostic]) -> str:

@@ -45,7 +45,9 @@ def test_concise_format() -> None:
 
 def test_json_format_has_ruff_shape() -> None:
     result = run("lint", "--format", "json", "E005_expected_number.lay", cwd=DIAGNOSTICS)
-    items = json.loads(result.stdout)
+    document = json.loads(result.stdout)  # one result object, its diagnostics in ruff's shape
+    assert document["command"] == "lint" and document["status"] == "errors" and document["exit_code"] == 1
+    items = document["diagnostics"]
     assert result.returncode == 1
     assert set(items[0]) == {"code", "severity", "message", "filename", "location", "end_location", "help"}
     assert items[0]["location"] == {"row": 2, "column": 8}
@@ -63,7 +65,8 @@ def test_stdin_with_filename() -> None:
 def test_missing_file_is_exit_two() -> None:
     result = run("lint", "does-not-exist.lay")
     assert result.returncode == 2
-    assert "cannot read does-not-exist.lay" in result.stderr
+    assert result.stderr == "layoutdsl lint: error: cannot read `does-not-exist.lay`: no such file or directory\n"
+    assert "no problems found" not in result.stdout
 
 
 def test_binary_file_is_exit_two_not_a_traceback(tmp_path: Path) -> None:
@@ -82,6 +85,7 @@ def test_no_command_and_bad_flag_are_usage_errors() -> None:
 def test_help_lists_exit_codes() -> None:
     out = run("lint", "--help").stdout
     assert "exit codes:" in out and "1  the input has errors" in out
+    assert "\n  3  " not in out  # lint cannot return 3 (no layout)
 
 
 def test_fmt_prints_check_and_write(tmp_path: Path) -> None:
