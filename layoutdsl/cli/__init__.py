@@ -24,6 +24,7 @@ COMMANDS = {
     "evaluate": ("evaluate", "compare generated plans with their original"),
     "batch": ("batch", "make many verified buildings from specs and plans, resumably"),
     "explain": ("explain", "print what a diagnostic code means"),
+    "lsp": ("lsp", "run the language server for editors (stdio)"),
 }
 
 

@@ -1,0 +1,261 @@
+"""What the language server answers, as plain functions of a spec's text.
+
+Lines are 0-based and columns are 0-based code points here (`layoutdsl.lsp.document`); the
+server converts them to the client's position encoding. Diagnostics come from exactly what
+`layoutdsl lint` runs (`layoutdsl.api.lint_source`: the parser, then every check), so the
+editor and the command line never disagree.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from layoutdsl.api import lint_source
+from layoutdsl.diagnostics import Diagnostic
+from layoutdsl.diagnostics.source import Source
+from layoutdsl.lsp.document import RoomEntry, SpecDocument, Word, is_number
+from layoutdsl.syntax.ast import ADJACENCY_TYPES, EMPHASES, ROOM_TYPE_NAMES, ROOM_TYPES, SETTING_KEYS
+from layoutdsl.syntax.format import format_source
+from layoutdsl.syntax.parser import SECTIONS
+
+
+@dataclass(frozen=True, slots=True)
+class Range:
+    """0-based, end-exclusive (start_line, start_col) - (end_line, end_col), code points."""
+
+    start_line: int
+    start_col: int
+    end_line: int
+    end_col: int
+
+    @staticmethod
+    def of_word(word: Word) -> Range:
+        return Range(word.line, word.start, word.line, word.end)
+
+
+@dataclass(frozen=True, slots=True)
+class Fix:
+    """A quick fix: replace `range` with `new_text`; `title` is what the editor's menu says."""
+
+    title: str
+    range: Range
+    new_text: str
+
+
+@dataclass(frozen=True, slots=True)
+class EditorDiagnostic:
+    """A lint diagnostic placed in the editor, with the quick fix its hint spells out."""
+
+    diagnostic: Diagnostic
+    range: Range
+    message: str
+    fix: Fix | None
+
+
+# ----------------------------------------------------------------------------- diagnostics
+
+
+def lint(text: str, path: str) -> list[EditorDiagnostic]:
+    """Lint a text as `layoutdsl lint` does and place each diagnostic in the editor."""
+    _, diagnostics = lint_source(Source(path, text))
+    lines = text.split("\n")
+    placed = []
+    for diagnostic in diagnostics:
+        span = diagnostic.span
+        start_line, end_line = span.line - 1, span.end_line - 1
+        rng = Range(start_line, span.col - 1, end_line, span.end_col - 1)
+        if start_line >= len(lines):  # a whole-file problem reported past the end
+            rng = Range(len(lines) - 1, 0, len(lines) - 1, 0)
+        placed.append(EditorDiagnostic(diagnostic, rng, editor_message(diagnostic), fix_for(diagnostic, rng)))
+    return placed
+
+
+def editor_message(diagnostic: Diagnostic) -> str:
+    """The message as an editor shows it: the message, its caret label, notes and help."""
+    parts = [diagnostic.message]
+    if diagnostic.label:
+        parts[0] += f" ({diagnostic.label})"
+    parts.extend(f"note: {note}" for note in diagnostic.notes)
+    if diagnostic.help:
+        parts.append(f"help: {diagnostic.help}")
+    return "\n".join(parts)
+
+
+# The hints that spell out an exact replacement for the diagnostic's span. Diagnostics carry
+# their hint as text only (layoutdsl.diagnostics.Diagnostic.help), so a fix is recognised by
+# the hint's wording; tests/lsp/test_features.py lints one example of each so that a
+# rewording shows up as a failing test, not as a quick fix that silently disappears.
+_REPLACEMENT_HINTS = (
+    re.compile(r"did you mean `(?P<text>[^`]+)`\?"),  # unknown room, section, setting, weight
+    re.compile(r"room types are upper case: `(?P<text>[^`]+)`"),  # E012 `r` -> `R`
+    re.compile(r"use `\.` as the decimal separator: `(?P<text>[^`]+)`"),  # E005 `4,5` -> `4.5`
+)
+
+
+def fix_for(diagnostic: Diagnostic, rng: Range) -> Fix | None:
+    """The quick fix a diagnostic's hint names, if it names one."""
+    if not diagnostic.help or rng.start_line != rng.end_line:
+        return None
+    for pattern in _REPLACEMENT_HINTS:
+        match = pattern.search(diagnostic.help)
+        if match:
+            text = match.group("text")
+            return Fix(f"Replace with `{text}` ({diagnostic.code})", rng, text)
+    return None
+
+
+# ----------------------------------------------------------------------------- navigation
+
+
+def definition(document: SpecDocument, line: int, column: int) -> Range | None:
+    """Where the room id under the cursor is defined (its `rooms` line)."""
+    use = document.room_use_at(line, column)
+    if use is None or use.word.text not in document.definitions:
+        return None
+    return Range.of_word(document.definitions[use.word.text])
+
+
+def references(document: SpecDocument, line: int, column: int, include_declaration: bool = True) -> list[Range]:
+    """Every place the room id under the cursor is named (its definition first)."""
+    use = document.room_use_at(line, column)
+    if use is None:
+        return []
+    return [Range.of_word(u.word) for u in document.uses_of(use.word.text)
+            if include_declaration or not u.is_definition]  # fmt: skip
+
+
+# ----------------------------------------------------------------------------- hover
+
+_SIZE_ROWS = (("width", 0), ("height", 3))
+
+
+def hover(document: SpecDocument, line: int, column: int) -> tuple[str, Range] | None:
+    """Markdown about the room id under the cursor: type, label, size bounds, adjacencies."""
+    use = document.room_use_at(line, column)
+    if use is None:
+        return None
+    room_id = use.word.text
+    if room_id not in document.room_lines:
+        return f"`{room_id}`: no room with this id is defined in `rooms`", Range.of_word(use.word)
+    return room_markdown(document, document.room_entry(room_id)), Range.of_word(use.word)
+
+
+def room_markdown(document: SpecDocument, room: RoomEntry) -> str:
+    kind = ROOM_TYPE_NAMES.get(room.rtype or "", f"type `{room.rtype}`")
+    defined = document.definitions[room.id].line + 1
+    out = [f"**{room.id}**: {kind} `{room.label}` (line {defined})", ""]
+    if len(room.numbers) >= 8:
+        n = room.numbers
+        out += ["| | min | max | target |", "|---|---|---|---|"]
+        out += [f"| {name} (m) | {n[i]} | {n[i + 1]} | {n[i + 2]} |" for name, i in _SIZE_ROWS]
+        out += ["", f"aspect ratio {n[6]} to {n[7]}"]
+    elif not room.numbers:
+        out.append("sizes: none written (the size model chooses them)")
+    else:
+        out.append("sizes: " + " ".join(room.numbers) + " (incomplete line)")
+    extras = []
+    if room.on_boundary:
+        extras.append("on the boundary (`onB`)")
+    extras.extend(f"`{weight}`" for weight in room.weights)
+    if extras:
+        out += ["", ", ".join(extras)]
+    adjacent = document.adjacencies_of(room.id)
+    out.append("")
+    if adjacent:
+        out.append("adjacent to:")
+        for other, door, kind_letter, _ in adjacent:
+            what = {"e": "door", "i": "opening"}.get(kind_letter, kind_letter)
+            out.append(f"- `{other}` ({what}, {door} m)")
+    else:
+        out.append("adjacent to no room")
+    return "\n".join(out)
+
+
+# ----------------------------------------------------------------------------- completion
+
+
+@dataclass(frozen=True, slots=True)
+class Completion:
+    label: str
+    kind: str
+    """`section`, `room`, `label`, `setting`, `value` or `flag`: the server maps it to an icon."""
+    detail: str = ""
+
+
+def completions(document: SpecDocument, line: int, column: int) -> list[Completion]:
+    """What may be typed at the cursor, from the line's section and the word's place in it."""
+    spec_line = document.line(line)
+    if spec_line is None:
+        return [Completion(name, "section") for name in SECTIONS]
+    if spec_line.comment_start is not None and column > spec_line.comment_start:
+        return []
+    before = [w for w in spec_line.words if w.start < column]
+    typing = bool(before) and before[-1].end >= column  # the cursor is on a word, not after a blank
+    index = len(before) - 1 if typing else len(before)
+    previous = [w.text for w in before[: index]]
+    section = spec_line.section if not spec_line.is_header else _section_before(document, line)
+    items: list[Completion] = []
+    if index == 0:
+        opened = set(document.sections())
+        items += [Completion(name, "section") for name in SECTIONS if name not in opened or spec_line.is_header]
+    if section is None:
+        return items
+    if section == "rooms":
+        items += _room_line_completions(document, previous, index)
+    elif section == "adjacencies":
+        if index in (0, 1):
+            items += _room_ids(document, exclude=previous[:1])
+        elif index == 3:
+            items += [Completion(kind, "value", {"e": "door (explicit portal)", "i": "opening (implicit portal)"}[kind])
+                      for kind in ADJACENCY_TYPES]  # fmt: skip
+    elif section in ("arms", "positions", "connections", "hints", "clusters") and index == 0:
+        items += _room_ids(document)
+    elif section == "settings":
+        if index == 0:
+            chosen = set(document.setting_keys())
+            items += [Completion(key, "setting") for key in SETTING_KEYS if key not in chosen]
+        elif index == 1 and previous[0] == "emphasis":
+            items += [Completion(value, "value", "SCIP emphasis") for value in EMPHASES]
+    return items
+
+
+def _section_before(document: SpecDocument, line: int) -> str | None:
+    previous = document.line(line - 1)
+    return previous.section if previous else None
+
+
+def _room_ids(document: SpecDocument, exclude: list[str] = ()) -> list[Completion]:
+    items = []
+    for room_id in document.definitions:
+        if room_id in exclude:
+            continue
+        entry = document.room_entry(room_id)
+        items.append(Completion(room_id, "room", f"{entry.rtype or '?'} {entry.label}".strip()))
+    return items
+
+
+def _room_line_completions(document: SpecDocument, previous: list[str], index: int) -> list[Completion]:
+    if index == 0:
+        return []  # a new room's id: nothing to offer but the section names
+    after_id = previous[1:]
+    if all(is_number(word) for word in after_id):
+        # still among the sizes; the room type comes after the 8 sizes (or right after the
+        # id when the size model chooses them)
+        if len(after_id) in (0, 8):
+            return [Completion(t, "value", ROOM_TYPE_NAMES[t]) for t in ROOM_TYPES]
+        return []
+    items = [Completion(label, "label") for label in document.labels()]
+    if len(after_id) > 1 + sum(is_number(w) for w in after_id):  # a label word is written
+        items += [Completion("onB", "flag", "the room touches the boundary (the thesis, 5.12)")]
+        items += [Completion("cover=", "flag", "weight of its area in E_cover"),
+                  Completion("error=", "flag", "weight of its size error in E_error")]  # fmt: skip
+    return items
+
+
+# ----------------------------------------------------------------------------- formatting
+
+
+def formatted(text: str, path: str) -> str | None:
+    """The text as `layoutdsl fmt` writes it, or None when it has errors (fmt refuses then)."""
+    return format_source(Source(path, text))
