@@ -30,6 +30,7 @@ LAYERS: tuple[str, ...] = (
     "syntax",
     "check",
     "importer",
+    "sizes",
     "layout",
     "model",
     "solve",
