@@ -23,6 +23,7 @@ from layoutdsl.check.names import check_duplicate_ids, check_references, check_r
 from layoutdsl.check.shapes import check_arms
 from layoutdsl.check.topology import check_components, check_planarity
 from layoutdsl.diagnostics import Diagnostic
+from layoutdsl.diagnostics.followon import without_follow_ons
 from layoutdsl.syntax.ast import Spec
 
 __all__ = ["CHECKS", "check_spec", "reachable_ratios"]
@@ -49,6 +50,7 @@ def check_spec(spec: Spec) -> list[Diagnostic]:
     diagnostics: list[Diagnostic] = []
     for check in CHECKS:
         diagnostics.extend(check(spec))
+    diagnostics = without_follow_ons(diagnostics)  # no W301 beside the E102 that causes it
     diagnostics.sort(key=Diagnostic.sort_key)
     return diagnostics
 

@@ -4,7 +4,8 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 
-from layoutdsl.check.common import diag, did_you_mean, node_span, rooms_by_id
+from layoutdsl.check.common import diag, node_span, rooms_by_id
+from layoutdsl.diagnostics.suggest import did_you_mean
 from layoutdsl.diagnostics import Diagnostic, Severity, register
 from layoutdsl.syntax.ast import Adjacency, Room, Spec
 
@@ -132,15 +133,22 @@ def check_references(spec: Spec) -> Iterator[Diagnostic]:
     """E102-E106: every room id used outside `rooms` is defined there."""
     known = rooms_by_id(spec)
 
-    def unknown(code: str, node, field: str, room_id: str, what: str) -> Diagnostic:
+    def unknown(code: str, node, field: str, room_id: str, what: str, other: str | None = None) -> Diagnostic:
+        # always a way forward: the closest id (never the adjacency's other room, which
+        # would make it adjacent to itself), else the ids there are
+        shown = list(known)[:8]
+        listing = ", ".join(f"`{room}`" for room in shown) + (", ..." if len(known) > len(shown) else "")
+        help_text = did_you_mean(room_id, [room for room in known if room != other]) or (
+            f"define `{room_id}` in `rooms`, or use one of its rooms: {listing}" if known
+            else f"define `{room_id}` in `rooms`")
         return diag(spec, code, f"{what} unknown room `{room_id}`", node_span(node, field), "not defined",
-                     did_you_mean(room_id, known))  # fmt: skip
+                     help_text)  # fmt: skip
 
     for adjacency in spec.adjacencies:
         for field, room_id in (("a", adjacency.a), ("b", adjacency.b)):
             if room_id not in known:
                 other = adjacency.b if field == "a" else adjacency.a
-                yield unknown(E_UNKNOWN_ADJACENT, adjacency, field, room_id, f"room `{other}` is adjacent to")
+                yield unknown(E_UNKNOWN_ADJACENT, adjacency, field, room_id, f"room `{other}` is adjacent to", other)
     for position in spec.positions:
         if position.room not in known:
             yield unknown(E_UNKNOWN_POSITIONED, position, "room", position.room, "position for")

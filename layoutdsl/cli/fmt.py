@@ -1,75 +1,98 @@
-"""`layoutdsl fmt FILE...`: print (or --check, or --write) the canonical form of specs."""
+"""`layoutdsl fmt PATH...`: print (or --check, or --write) the canonical form of specs."""
 
 from __future__ import annotations
 
 import argparse
-import sys
 
-from layoutdsl.diagnostics import exitcodes
-from layoutdsl.emit.atomic import write_text_atomic
 from layoutdsl.cli.lint import read_input
-from layoutdsl.diagnostics import has_errors
+from layoutdsl.cli.output import Output, add_command, add_output_arguments, expand_specs
+from layoutdsl.diagnostics import exitcodes, has_errors
+from layoutdsl.diagnostics.filekind import wrong_kind_for_spec
+from layoutdsl.emit.atomic import write_text_atomic
 from layoutdsl.syntax.format import format_source
 from layoutdsl.syntax.parser import parse_source
-from layoutdsl.diagnostics.render import render_full
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register the `fmt` subcommand."""
-    parser = subparsers.add_parser(
-        "fmt",
+    parser = add_command(
+        subparsers, "fmt",
         help="print specs in canonical form",
         description=(
             "Print the canonical form of layout specs (thesis section order, single spaces, "
             "shortest exact numbers). Comments are kept: a comment line stays above the line "
-            "after it, a comment after values stays at the end of its line."
+            "after it, a comment after values stays at the end of its line. A folder means "
+            "every `*.lay` file under it, recursively. A spec with errors is left alone and "
+            "its diagnostics are printed."
         ),
-        epilog=exitcodes.EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    parser.add_argument("files", nargs="+", metavar="FILE", help="spec files; `-` reads standard input")
+        examples=[
+            ("print the canonical form", "layoutdsl fmt specs/office_small.lay"),
+            ("fail (exit 1) if any spec under a folder is not canonical, as CI does", "layoutdsl fmt --check specs/"),
+            ("rewrite every spec under a folder in place", "layoutdsl fmt --write specs/"),
+        ],
+    )  # fmt: skip
+    parser.add_argument("files", nargs="+", metavar="PATH",
+                        help="spec files or folders of them; `-` reads standard input")
     mode = parser.add_mutually_exclusive_group()
     mode.add_argument("--check", action="store_true", help="exit 1 if a file is not in canonical form")
     mode.add_argument("--write", action="store_true", help="rewrite files in place (atomically)")
     parser.add_argument("--stdin-filename", metavar="NAME", default=None, help="name for standard input")
+    add_output_arguments(parser, diagnostics=True)
     parser.set_defaults(run=run)
     return parser
 
 
 def run(args: argparse.Namespace) -> int:
     """Format every file; errors in a spec are printed to stderr and the file is left alone."""
+    out = Output("fmt", args)
     status = exitcodes.OK
-    for path in args.files:
+    paths, empty = expand_specs(args.files)
+    for folder in empty:
+        status = out.error(f"no `.lay` files under `{folder}`", kind="io", path=folder)
+    unchanged: list[str] = []
+    changed: list[str] = []
+    formatted: dict[str, str] = {}
+    for path in paths:
+        out.reading(path)
         try:
             source = read_input(path, args.stdin_filename)
         except (OSError, ValueError) as error:
-            reason = error.strerror if isinstance(error, OSError) and error.strerror else str(error)
-            print(f"layoutdsl fmt: cannot read {path}: {reason}", file=sys.stderr)
-            status = exitcodes.USAGE
+            status = max(status, out.cannot_read(path, error))
             continue
-        spec, diagnostics = parse_source(source)
+        wrong = wrong_kind_for_spec(source.path, source.text)
+        spec, diagnostics = (None, [wrong]) if wrong is not None else parse_source(source)
+        out.diagnostics(diagnostics, {source.path: source})
         if spec is None or has_errors(diagnostics):
-            sys.stderr.write(render_full(diagnostics, {source.path: source}))
             status = max(status, exitcodes.SPEC_ERRORS)
             continue
         text = format_source(source)
+        (unchanged if text == source.text else changed).append(source.path)
         if args.check:
             if text != source.text:
-                print(f"would reformat {source.path}", file=sys.stderr)
+                if not out.json:
+                    print(f"would reformat {source.path}", file=out.stderr)
                 status = max(status, exitcodes.SPEC_ERRORS)
         elif args.write:
             if text == source.text:
                 continue
             if path == "-":
-                sys.stdout.write(text)
+                out.product(text)
                 continue
             try:
                 write_text_atomic(path, text)
             except OSError as error:
-                print(f"layoutdsl fmt: cannot write {path}: {error.strerror or error}", file=sys.stderr)
-                status = exitcodes.USAGE
+                status = max(status, out.cannot_write(path, error))
                 continue
-            print(f"reformatted {path}", file=sys.stderr)
+            out.wrote(path)
+            out.progress(f"reformatted {path}")
+        elif out.json:
+            formatted[source.path] = text
         else:
-            sys.stdout.write(text)
-    return status
+            out.product(text)
+    if (args.check or args.write) and "-" not in paths:  # stdout may hold a formatted spec
+        verb = "would reformat" if args.check else "reformatted"
+        out.summary(f"{len(changed)} files {verb}, {len(unchanged)} already canonical")
+    fields = {"changed": changed, "unchanged": unchanged}
+    if formatted:
+        fields["formatted"] = formatted
+    return out.finish(status, **fields)

@@ -8,6 +8,7 @@ import sys
 from layoutdsl.api import lint_source, read_source
 from layoutdsl.cli.output import Output, add_command, add_output_arguments, expand_specs
 from layoutdsl.diagnostics import exitcodes
+from layoutdsl.diagnostics.filekind import wrong_kind_for_spec
 from layoutdsl.diagnostics.render import summary
 from layoutdsl.diagnostics.source import Source
 
@@ -68,6 +69,10 @@ def run(args: argparse.Namespace) -> int:
             unreadable += 1
             continue
         sources[source.path] = source
+        wrong = wrong_kind_for_spec(source.path, source.text)
+        if wrong is not None:  # a plan or a graph: one E019 instead of a page of syntax errors
+            diagnostics.append(wrong)
+            continue
         _, found = lint_source(source)
         diagnostics.extend(found)
     out.diagnostics(diagnostics, sources, stream="stdout")

@@ -71,7 +71,7 @@ def has_errors(diagnostics: list[Diagnostic] | tuple[Diagnostic, ...]) -> bool:
     return any(d.is_error for d in diagnostics)
 
 
-CODE_MODULES = ("layoutdsl.syntax.parser", "layoutdsl.syntax.builder", "layoutdsl.check", "layoutdsl.importer", "layoutdsl.compile.explain")
+CODE_MODULES = ("layoutdsl.syntax.parser", "layoutdsl.syntax.builder", "layoutdsl.check", "layoutdsl.importer", "layoutdsl.compile.explain", "layoutdsl.diagnostics.filekind")
 """Modules that register codes at import time; `load_all_codes` imports them all."""
 
 
