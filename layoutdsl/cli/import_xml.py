@@ -14,6 +14,7 @@ import sys
 from dataclasses import replace
 from pathlib import Path
 
+from layoutdsl.cli import import_graph
 from layoutdsl.diagnostics import exitcodes
 from layoutdsl.diagnostics import Diagnostic, has_errors
 from layoutdsl.importer import ImportOptions, import_building
@@ -39,7 +40,7 @@ def add_parser(subparsers) -> None:
         epilog=exitcodes.EPILOG,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("input", help="building XML file, or - for standard input")
+    parser.add_argument("input", help="building XML file or room graph (.csv, .json, .graphml), or - for standard input")
     parser.add_argument(
         "-o", "--output", default="-", help="spec file to write, or - for standard output (default)"
     )
@@ -93,6 +94,7 @@ def add_parser(subparsers) -> None:
         help="how diagnostics are printed (default full)",
     )  # fmt: skip
     parser.add_argument("-q", "--quiet", action="store_true", help="print no summary line")
+    import_graph.add_arguments(parser)
     parser.set_defaults(run=run)
 
 
@@ -138,6 +140,9 @@ def run(args: argparse.Namespace) -> int:
         text = sys.stdin.read()
     else:
         source_name = args.input
+    graph_format = import_graph.graph_format(args, text)
+    if graph_format is not None:  # a room graph without geometry, not a building plan
+        return import_graph.run(args, graph_format, text, _print_diagnostics)
     to_stdout = args.output == "-"
     # The spec's name is the output's stem, which is also what reading the file back gives,
     # so the formatter needs no `name` setting and the output stays a plain thesis file.
