@@ -31,6 +31,7 @@ LAYERS: tuple[str, ...] = (
     "check",
     "importer",
     "sizes",
+    "sample",
     "layout",
     "model",
     "solve",
