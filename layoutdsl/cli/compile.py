@@ -12,6 +12,7 @@ import sys
 from pathlib import Path
 
 from layoutdsl.cli.argtypes import non_negative_float, non_negative_int, positive_float, positive_int
+from layoutdsl.cli.output import Output, add_command, add_output_arguments
 from layoutdsl.diagnostics import exitcodes
 from layoutdsl.syntax.ast import EMPHASES
 
@@ -22,20 +23,24 @@ the solver, so that `--help` need not import Pyomo."""
 
 def add_parser(subparsers) -> None:
     """Register the `compile` subcommand."""
-    parser = subparsers.add_parser(
-        "compile",
+    parser = add_command(
+        subparsers, "compile",
         help="solve a spec into a verified layout and write its files",
         description=(
             "Compile a layout spec: lint it, solve the thesis' MIQP (§5.5.1) with SCIP, "
             "verify the result independently and write OUTDIR/NAME.layout.json plus the "
-            "chosen output formats. Flags override the spec's settings. The same spec and "
-            "seed give the same layout whenever the solve stops at its gap, node limit or "
-            "solution limit; a run that stops at the wall-clock time limit may differ from "
-            "run to run (the summary says which rule stopped it)."
+            "chosen output formats (OUTDIR is created if needed). Flags override the spec's "
+            "settings.\n\nThe same spec and seed give the same layout whenever the solve stops "
+            "at its gap, node limit or solution limit; a run that stops at the wall-clock time "
+            "limit may differ from run to run (the summary says which rule stopped it)."
         ),
-        epilog=exitcodes.EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+        examples=[
+            ("compile a spec into out/", "layoutdsl compile specs/office_small.lay -o out"),
+            ("a deterministic run: stop after 50 branch-and-bound nodes", "layoutdsl compile specs/office_small.lay -o out --seed 3 --node-limit 50"),
+            ("three different layouts, out/NAME-v1.* ... out/NAME-v3.*", "layoutdsl compile specs/office_small.lay -o out --variants 3"),
+            ("the result (files written, status, timings) as JSON", "layoutdsl compile specs/office_small.lay -o out --format json -q"),
+        ],
+    )  # fmt: skip
     parser.add_argument("spec", help="spec file (.lay), or - for standard input")
     parser.add_argument("-o", "--output", required=True, metavar="OUTDIR", help="directory for the outputs")
     parser.add_argument("--time-limit", type=positive_float, metavar="S",
@@ -59,7 +64,7 @@ def add_parser(subparsers) -> None:
     parser.add_argument("--no-robot", dest="robot", action="store_false",
                         help="leave the wheeled robot and its rangefinders out of the MuJoCo scene")
     parser.add_argument("--variants", type=positive_int, metavar="N",
-                        help="write N different verified layouts, NAME-1.* ... NAME-N.*: new "
+                        help="write N different verified layouts, NAME-v1.* ... NAME-vN.*: new "
                         "arrangements generated from the room graph, seeds seed, seed+1, ... "
                         "tried in turn, each stopping at its first verified layout, polished; "
                         "one within 0.3 of a variant kept is skipped")
@@ -75,65 +80,53 @@ def add_parser(subparsers) -> None:
                         help="when the spec is infeasible, say so without searching for the "
                         "conflicting lines (faster on large specs)")
     parser.add_argument("--stdin-filename", metavar="NAME", help="the name messages use for standard input")
-    parser.add_argument("--format", choices=("full", "concise", "json"), default="full",
-                        help="how diagnostics are printed (default full)")
-    parser.add_argument("-q", "--quiet", action="store_true", help="no progress lines on stderr")
+    add_output_arguments(parser, diagnostics=True)
     parser.set_defaults(run=run)
-
-
-def _print_diagnostics(diagnostics, sources, style: str) -> None:
-    from layoutdsl.diagnostics import render
-
-    if not diagnostics:
-        return
-    if style == "json":
-        text = render.render_json(diagnostics)
-    elif style == "concise":
-        text = render.render_concise(diagnostics)
-    else:
-        text = render.render_full(diagnostics, sources)
-    sys.stderr.write(text)
-    sys.stderr.flush()
-
-
-def _error(message: str) -> int:
-    print(f"layoutdsl compile: error: {message}", file=sys.stderr)
-    return exitcodes.USAGE
 
 
 def run(args: argparse.Namespace) -> int:
     """Compile one spec; exit 0 with a layout, 1 spec errors, 2 usage/I/O, 3 no layout."""
     from layoutdsl.api import lint_source, read_source
     from layoutdsl.diagnostics import has_errors
+    from layoutdsl.diagnostics.filekind import wrong_kind_for_spec
     from layoutdsl.diagnostics.source import Source
 
+    out = Output("compile", args)
+    out.reading(args.spec)
     try:
         if args.spec == "-":
-            source = Source(args.stdin_filename or "<stdin>", sys.stdin.read())
+            source = Source(args.stdin_filename or "<stdin>", sys.stdin.buffer.read().decode("utf-8"))
         else:
             source = read_source(args.spec)
     except (OSError, UnicodeDecodeError) as error:
-        reason = getattr(error, "strerror", None) or str(error)
-        return _error(f"cannot read `{args.spec}`: {reason}")
-    spec, diagnostics = lint_source(source)
+        return out.finish(out.cannot_read(args.spec, error))
     sources = {source.path: source}
-    _print_diagnostics(diagnostics, sources, args.format)
+    wrong = wrong_kind_for_spec(source.path, source.text)
+    if wrong is not None:  # `compile plan.xml`: say to import it, not a page of syntax errors
+        out.diagnostics([wrong], sources)
+        return out.finish(exitcodes.SPEC_ERRORS)
+    with out.timed("lint"):
+        spec, diagnostics = lint_source(source)
+    out.diagnostics(diagnostics, sources)
     if spec is None or has_errors(diagnostics):
-        return exitcodes.SPEC_ERRORS
+        return out.finish(exitcodes.SPEC_ERRORS)
 
     formats = _formats(args.emit)
     if isinstance(formats, str):
-        return _error(formats)
+        return out.finish(out.error(formats))
     from layoutdsl.emit import MAX_WALL_HEIGHT
 
     if args.wall_height > MAX_WALL_HEIGHT:
-        return _error(f"--wall-height {args.wall_height:g} is taller than {MAX_WALL_HEIGHT:g} m")
+        return out.finish(out.error(f"--wall-height {args.wall_height:g} is taller than {MAX_WALL_HEIGHT:g} m"))
     if args.robot_room is not None and spec.room(args.robot_room) is None:
-        known = ", ".join(spec.room_ids[:10])
-        return _error(f"--robot-room `{args.robot_room}` is not a room of the spec (rooms: {known})")
+        from layoutdsl.diagnostics.suggest import suggest
+
+        guess = suggest(args.robot_room, spec.room_ids)
+        hint = f"did you mean `{guess}`?" if guess else "rooms: " + ", ".join(spec.room_ids[:10])
+        return out.finish(out.error(f"--robot-room `{args.robot_room}` is not a room of the spec ({hint})"))
     outdir = Path(args.output)
     if outdir.exists() and not outdir.is_dir():
-        return _error(f"`{outdir}` exists and is not a directory")
+        return out.finish(out.error(f"`{outdir}` exists and is not a directory", kind="io", path=str(outdir)))
 
     from layoutdsl.solve import SolveOptions
 
@@ -145,30 +138,54 @@ def run(args: argparse.Namespace) -> int:
         emphasis=args.emphasis,
         node_limit=args.node_limit,
         solution_limit=args.solution_limit,
-        quiet=args.quiet,
+        quiet=not out.verbose,  # the solver's own log is a detail: -v shows it
         strategy=args.strategy,
     )
     if args.variants:
-        return _run_variants(spec, args, options, outdir, formats, sources)
+        return _run_variants(spec, args, options, outdir, formats, sources, out)
 
     from layoutdsl.compile import compile_spec
 
-    if not args.quiet:
-        print(f"compiling `{spec.name}`: {len(spec.rooms)} rooms, time limit {options.time_limit:g} s",
-              file=sys.stderr, flush=True)
-    result = compile_spec(spec, options, explain_infeasible=args.explain)
-    _print_diagnostics(result.diagnostics, sources, args.format)
+    out.progress(f"compiling `{spec.name}`: {len(spec.rooms)} rooms, time limit {options.time_limit:g} s")
+    with out.timed("solve"):
+        result = compile_spec(spec, options, explain_infeasible=args.explain)
+    out.diagnostics(result.diagnostics, sources)
     if result.layout is None:
-        return exitcodes.NO_LAYOUT
+        return out.finish(exitcodes.NO_LAYOUT, spec=spec.name)
     try:
-        written = write_layout_files(result.layout, outdir, spec.name, formats, robot_room=args.robot_room,
-                                     wall_height=args.wall_height, robot=args.robot)
+        with out.timed("write"):
+            written = write_layout_files(result.layout, outdir, spec.name, formats, robot_room=args.robot_room,
+                                         wall_height=args.wall_height, robot=args.robot)
     except OSError as error:
-        return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
+        return out.finish(out.cannot_write(getattr(error, "filename", None) or outdir, error))
     except ValueError as error:  # the emitters refuse an option (EmitError)
-        return _error(str(error))
-    print(summary(spec, result.layout, written))
-    return exitcodes.OK
+        return out.finish(out.error(str(error)))
+    out.wrote(*written)
+    out.summary(summary(spec, result.layout, written))
+    return out.finish(exitcodes.OK, spec=spec.name, layout=layout_fields(spec, result.layout))
+
+
+def layout_fields(spec, layout) -> dict:
+    """What the JSON result says about a layout: the summary's numbers, for scripts."""
+    info = layout.solve
+    deviations = size_deviations(spec, layout)
+    fields = {
+        "rooms": len(layout.rooms),
+        "portals": len(layout.portals),
+        "room_area_m2": round(sum(r.area for r in layout.rooms), 3),
+        "boundary_area_m2": round(layout.width * layout.height, 3),
+        "max_size_error": round(max(deviations.values()), 4) if deviations else None,
+    }
+    if info is not None:
+        fields.update({
+            "solve_status": info.status,
+            "objective": info.objective,
+            "gap": info.gap,
+            "solve_seconds": round(info.seconds, 3),
+            "method": info.method,
+            "seed": info.seed,
+        })
+    return fields
 
 
 def _formats(text: str) -> tuple[str, ...] | str:
@@ -287,22 +304,37 @@ def _write_variants_report(spec, seeds: list[int], source: str, layouts, pairwis
     return write_text_atomic(outdir / f"{spec.name}-variants.json", json.dumps(report, indent=2) + "\n")
 
 
-def _progress_line(line: str) -> None:
-    print(line, file=sys.stderr, flush=True)
+def variant_stem(name: str, index: int) -> str:
+    """A variant's file stem, `NAME-vK`: the one naming scheme of compile --variants and batch
+    (layoutdsl.batch names its buildings the same way); the `v` keeps `office-2`'s first
+    variant, `office-2-v1`, apart from a plan named `office-2-1`."""
+    return f"{name}-v{index}"
 
 
-def _run_variants(spec, args, options, outdir: Path, formats, sources) -> int:
-    """--variants N: the construction helper's compile_variants writes NAME-1.* ... NAME-N.*."""
+def variant_failure(args, options, seed: int | None) -> str:
+    """Why a variant has no layout, in words: which stopping rule it met, and what to try."""
+    limit = f"{options.time_limit:g} s"
+    if args.variants_from == "hints":
+        return (f"seed {seed}: neither the construction from the hints nor the solve found a "
+                f"verified layout within the time limit ({limit}); try a larger --time-limit")
+    return (f"no seed tried gave a new arrangement: each seed's construction found no start, or "
+            f"its solve no verified layout, within the time limit ({limit}); try a larger "
+            "--time-limit, another --seed, or --variants-from hints")
+
+
+def _run_variants(spec, args, options, outdir: Path, formats, sources, out: Output) -> int:
+    """--variants N: the construction helper's compile_variants writes NAME-v1.* ... NAME-vN.*."""
     from layoutdsl.compile.variants import compile_variants
 
     try:
-        result = compile_variants(spec, args.variants, seed=options.seed, options=options,
-                                  outdir=outdir, formats=formats, robot_room=args.robot_room,
-                                  workers=args.workers, source=args.variants_from,
-                                  world_options={"wall_height": args.wall_height, "robot": args.robot},
-                                  progress=None if args.quiet else _progress_line)
+        with out.timed("solve"):
+            result = compile_variants(spec, args.variants, seed=options.seed, options=options,
+                                      outdir=outdir, formats=formats, robot_room=args.robot_room,
+                                      workers=args.workers, source=args.variants_from,
+                                      world_options={"wall_height": args.wall_height, "robot": args.robot},
+                                      progress=out.progress)
     except OSError as error:
-        return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
+        return out.finish(out.cannot_write(getattr(error, "filename", None) or outdir, error))
     layouts = list(result.layouts)
     count = sum(1 for layout in layouts if layout is not None)
     pairwise, from_hints = variant_differences(spec, layouts)
@@ -312,16 +344,22 @@ def _run_variants(spec, args, options, outdir: Path, formats, sources) -> int:
             paths.append(_write_variants_report(spec, result.seeds, args.variants_from, layouts,
                                                 pairwise, from_hints, outdir, result.distinct))
         except OSError as error:
-            return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
+            return out.finish(out.cannot_write(getattr(error, "filename", None) or outdir, error))
+    out.wrote(*paths)
     line = f"compiled `{spec.name}`: {count} of {args.variants} variants"
     if pairwise:
         mean = sum(pairwise.values()) / len(pairwise)
         line += (f", mean pairwise difference {mean:.2f} (share of room pairs whose relative "
                  "position differs, best of 8 rotations/mirrors)")
     lines = [line]
+    records = []
     for index, layout in enumerate(layouts, start=1):
+        stem = variant_stem(spec.name, index)
+        seed = result.seeds[index - 1] if index - 1 < len(result.seeds) else None
         if layout is None:
-            lines.append(f"  {spec.name}-{index}: no layout")
+            reason = variant_failure(args, options, seed)
+            lines.append(f"  {stem}: no layout: {reason}")
+            records.append({"name": stem, "found": False, "seed": seed, "reason": reason})
             continue
         info = layout.solve
         objective = "-" if info is None or info.objective is None else f"{info.objective:.4g}"
@@ -329,12 +367,15 @@ def _run_variants(spec, args, options, outdir: Path, formats, sources) -> int:
         original = from_hints[index - 1]
         versus = "" if original is None else f", difference from the hints {original:.2f}"
         close = ", close to an earlier variant" if result.distinct is not None and not result.distinct[index - 1] else ""
-        lines.append(f"  {spec.name}-{index}: objective {objective}, {status}{versus}{close}")
+        lines.append(f"  {stem}: objective {objective}, {status}{versus}{close}")
+        records.append({"name": stem, "found": True, "seed": seed,
+                        "layout": layout_fields(spec, layout)})
     if pairwise:
         lines.append("  pairwise    " + ", ".join(
             f"{i}-{j} {value:.2f}" for (i, j), value in sorted(pairwise.items())))
     if paths:
         lines.append("  wrote       " + ", ".join(str(p) for p in paths))
-    print("\n".join(lines))
-    _print_diagnostics(list(result.diagnostics), sources, args.format)
-    return exitcodes.OK if count == args.variants else exitcodes.NO_LAYOUT
+    out.summary("\n".join(lines))
+    out.diagnostics(list(result.diagnostics), sources)
+    code = exitcodes.OK if count == args.variants else exitcodes.NO_LAYOUT
+    return out.finish(code, spec=spec.name, variants=records)

@@ -230,7 +230,7 @@ def compile_variants(
     world_options: dict | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> VariantsResult:
-    """Compile N variants of the spec; write NAME-k.* (and NAME-k.layout.json) to `outdir`.
+    """Compile N variants of the spec; write NAME-vK.* (and NAME-vK.layout.json) to `outdir`.
 
     Each variant gets at most options.time_limit seconds; up to `workers` (default: one per
     usable core) run at once. `source` is one of SOURCES (see the module docstring).
@@ -401,7 +401,7 @@ def _run_jobs(spec: Spec, jobs: list, workers: int) -> list:
 def _write(
     spec: Spec, layouts: list[Layout | None], outdir: Path, formats, robot_room, world_options: dict
 ) -> list[Path]:
-    """NAME-k.layout.json plus the emitters' files for each variant that has a layout."""
+    """NAME-vK.layout.json plus the emitters' files for each variant that has a layout."""
     from layoutdsl.emit.atomic import write_text_atomic
     from layoutdsl.emit import DEFAULT_FORMATS, write_outputs
 
@@ -410,7 +410,7 @@ def _write(
     for index, layout in enumerate(layouts, start=1):
         if layout is None:
             continue
-        stem = f"{spec.name}-{index}"
+        stem = f"{spec.name}-v{index}"  # NAME-vK, as batch names its buildings (one scheme, issue 42)
         paths.append(write_text_atomic(outdir / f"{stem}.layout.json", layout.to_json()))
         paths += write_outputs(layout, outdir, stem, formats or DEFAULT_FORMATS,
                                robot_room=robot_room, **world_options)

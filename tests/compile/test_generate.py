@@ -109,9 +109,9 @@ def test_compile_variants_command_reports_pairwise_differences(tmp_path, capsys)
 
     spec_path = tmp_path / "tree.lay"
     spec_path.write_text(format_spec(tree_spec()))
-    code = main(["compile", str(spec_path), "-o", str(tmp_path / "out"), "-q", "--emit", "xml",
+    code = main(["compile", str(spec_path), "-o", str(tmp_path / "out"), "--emit", "xml",
                  "--variants", "2", "--workers", "1", "--time-limit", "20"])
-    out = capsys.readouterr().out
+    out = capsys.readouterr().out  # the summary (which -q leaves out)
     assert code == 0, out
     assert "2 of 2 variants" in out and "pairwise    1-2 " in out
     report = json.loads((tmp_path / "out" / "tree-variants.json").read_text())
