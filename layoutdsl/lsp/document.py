@@ -155,10 +155,13 @@ class SpecDocument:
         uses.sort(key=lambda use: (not use.is_definition, use.word.line, use.word.start))
         return uses
 
-    def labels(self) -> list[str]:
-        """The labels the file's rooms use, each once, in first-use order."""
+    def labels(self, except_line: int | None = None) -> list[str]:
+        """The labels the file's rooms use, each once, in first-use order (leaving out the
+        room on `except_line`: the line being typed)."""
         seen: dict[str, None] = {}
         for room_id in self.definitions:
+            if self.room_lines[room_id].number == except_line:
+                continue
             label = self.room_entry(room_id).label
             if label:
                 seen.setdefault(label, None)

@@ -202,7 +202,7 @@ def completions(document: SpecDocument, line: int, column: int) -> list[Completi
     if section is None:
         return items
     if section == "rooms":
-        items += _room_line_completions(document, previous, index)
+        items += _room_line_completions(document, previous, index, line)
     elif section == "adjacencies":
         if index in (0, 1):
             items += _room_ids(document, exclude=previous[:1])
@@ -235,7 +235,7 @@ def _room_ids(document: SpecDocument, exclude: list[str] = ()) -> list[Completio
     return items
 
 
-def _room_line_completions(document: SpecDocument, previous: list[str], index: int) -> list[Completion]:
+def _room_line_completions(document: SpecDocument, previous: list[str], index: int, line: int) -> list[Completion]:
     if index == 0:
         return []  # a new room's id: nothing to offer but the section names
     after_id = previous[1:]
@@ -245,7 +245,7 @@ def _room_line_completions(document: SpecDocument, previous: list[str], index: i
         if len(after_id) in (0, 8):
             return [Completion(t, "value", ROOM_TYPE_NAMES[t]) for t in ROOM_TYPES]
         return []
-    items = [Completion(label, "label") for label in document.labels()]
+    items = [Completion(label, "label") for label in document.labels(except_line=line)]
     if len(after_id) > 1 + sum(is_number(w) for w in after_id):  # a label word is written
         items += [Completion("onB", "flag", "the room touches the boundary (the thesis, 5.12)")]
         items += [Completion("cover=", "flag", "weight of its area in E_cover"),

@@ -19,6 +19,7 @@ from pygls.lsp.server import LanguageServer
 from layoutdsl import __version__
 from layoutdsl.lsp import features
 from layoutdsl.lsp.document import SpecDocument, split_lines
+from layoutdsl.syntax import parser
 
 DEBOUNCE_SECONDS = 0.2
 """Pause after the last keystroke before linting: long enough to skip the intermediate
@@ -136,6 +137,9 @@ def _path_of(uri: str) -> str:
 
 def build_server() -> SpecLanguageServer:
     """A server with every feature registered."""
+    # Every edit re-lints the whole text, of which it changes a line or two: reuse the
+    # parsed lines (on a 2,000-room spec this takes a lint from 0.7 s to 0.1 s, bench/lsp.py).
+    parser.keep_parsed_lines()
     ls = SpecLanguageServer()
 
     @ls.feature(lsp.TEXT_DOCUMENT_DID_OPEN)

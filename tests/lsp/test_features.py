@@ -1,0 +1,97 @@
+"""The editor features as plain functions (no protocol): the lexical index, completion
+contexts, quick fixes, and the parsed-line memory the server turns on."""
+
+from __future__ import annotations
+
+import pytest
+
+from layoutdsl.api import lint_source
+from layoutdsl.diagnostics.source import Source
+from layoutdsl.lsp import features
+from layoutdsl.lsp.document import SpecDocument
+from layoutdsl.syntax import parser
+
+SPEC = """\
+rooms
+hall 10 20 15 2 3 2.5 4 10 C HALL   # the spine
+kitchen 3 5 4 3 5 4 1 1.67 R KITCHEN onB cover=0.5
+ROOM#3 3 5 4 3 5 4 1 1.67 R STORE ROOM
+
+boundary
+20 12
+O1 0 0 1 1
+
+adjacencies
+kitchen hall 0.9 e
+ROOM#3 hall 0.9 i # kitchen is not named here
+
+clusters
+K0
+kitchen 0 0
+ROOM#3 4 0
+"""
+
+
+def test_the_index_finds_definitions_and_references_but_not_comments_obstacles_or_clusters() -> None:
+    document = SpecDocument(SPEC)
+    assert list(document.definitions) == ["hall", "kitchen", "ROOM#3"]
+    uses = [(u.word.text, u.word.line, u.word.start, u.is_definition) for u in document.uses_of("kitchen")]
+    assert uses == [("kitchen", 2, 0, True), ("kitchen", 10, 0, False), ("kitchen", 15, 0, False)]
+    assert [u.word.line for u in document.uses_of("ROOM#3")] == [3, 11, 16]
+    assert document.uses_of("K0") == [] and document.uses_of("O1") == []
+
+
+def test_a_room_line_is_read_word_by_word() -> None:
+    entry = SpecDocument(SPEC).room_entry("kitchen")
+    assert entry.numbers == ("3", "5", "4", "3", "5", "4", "1", "1.67")
+    assert (entry.rtype, entry.label, entry.on_boundary, entry.weights) == ("R", "KITCHEN", True, ("cover=0.5",))
+    assert SpecDocument(SPEC).room_entry("ROOM#3").label == "STORE ROOM"
+    sizeless = SpecDocument("rooms\nlobby E ENTRANCE HALL onB\n").room_entry("lobby")
+    assert (sizeless.numbers, sizeless.rtype, sizeless.label, sizeless.on_boundary) == ((), "E", "ENTRANCE HALL", True)
+
+
+def _completions(text: str, line: int, column: int) -> list[str]:
+    return [c.label for c in features.completions(SpecDocument(text), line, column)]
+
+
+def test_completion_follows_the_words_place_on_its_line() -> None:
+    rooms = "rooms\nhall 10 20 15 2 3 2.5 4 10 C HALL\nx 1 2 1 1 2 1 1 2 "
+    assert _completions(rooms, 2, len("x 1 2 1 1 2 1 1 2 ")) == ["R", "C", "E"]
+    assert _completions(rooms, 2, len("x 1 2 1 ")) == []  # among the sizes
+    typed_label = rooms + "R STORE "
+    assert _completions(typed_label, 2, len(typed_label.split("\n")[2])) == ["HALL", "onB", "cover=", "error="]
+    adjacency = SPEC + "\nadjacencies\nhall kitchen 1 "
+    last = adjacency.split("\n")
+    assert _completions(adjacency, len(last) - 1, len(last[-1])) == ["e", "i"]
+    # in a comment, nothing
+    assert _completions(SPEC, 1, len("hall 10 20 15 2 3 2.5 4 10 C HALL   # th")) == []
+
+
+def test_fixes_are_read_from_the_hints_that_name_a_replacement() -> None:
+    text = "rooms\nhall 10 20 15 2 3 2,5 4 10 C HALL\nstore 1 2 1 1 2 1 1 2 c STORE\n\nboundary\n20 12\n\nadjacencys\n"
+    found = {d.diagnostic.code: d.fix for d in features.lint(text, "fix.lay")}
+    assert found["E005"] == features.Fix("Replace with `2.5` (E005)", features.Range(1, 18, 1, 21), "2.5")
+    assert text.split("\n")[1][18:21] == "2,5"
+    assert found["E012"].new_text == "C" and found["E001"].new_text == "adjacencies"
+
+
+@pytest.mark.parametrize("edited", [
+    SPEC,
+    SPEC.replace("kitchen hall 0.9 e", "kitchen hall 0.9 x"),     # a value error on a line that parses
+    SPEC.replace("R KITCHEN", "r KITCHEN"),                        # another one, replayed from memory
+    SPEC.replace("20 12\n", "20 12\n\n").replace("O1 0", "O1 0 0"),  # lines moved, one broken
+])  # fmt: skip
+def test_remembered_lines_give_the_same_spec_and_diagnostics(edited: str) -> None:
+    def lint(text: str):
+        spec, diagnostics = lint_source(Source("memo.lay", text))
+        return spec, [(d.code, d.message, d.span, d.help) for d in diagnostics]
+
+    parser.keep_parsed_lines(0)
+    fresh = lint(edited)
+    try:
+        parser.keep_parsed_lines()
+        lint(SPEC)  # remember the original's lines, as the server does before an edit
+        assert lint(edited) == fresh
+        assert lint(edited) == fresh  # and again, entirely from memory
+    finally:
+        parser.keep_parsed_lines(0)
