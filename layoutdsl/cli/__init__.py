@@ -23,6 +23,7 @@ COMMANDS = {
     "import": ("import_xml", "convert a building XML plan into a spec"),
     "evaluate": ("evaluate", "compare generated plans with their original"),
     "batch": ("batch", "make many verified buildings from specs and plans, resumably"),
+    "sample": ("sample", "write specs of new buildings learned from real plans"),
     "explain": ("explain", "print what a diagnostic code means"),
     "lsp": ("lsp", "run the language server for editors (stdio)"),
 }
