@@ -53,6 +53,8 @@ def graph_format(args: argparse.Namespace, text: str | None) -> str | None:
     if args.input == "-":
         name = args.stdin_filename or ""
         found = detect_format(name, text) if name else detect_format("-", text)
+        if found == "graphml" and Path(name).suffix.lower() == ".xml" and "<graphml" not in (text or "")[:4096]:
+            found = None  # as for a file: an .xml name is a building plan unless its text says GraphML
     else:
         found = detect_format(args.input)
         if found == "graphml" and Path(args.input).suffix.lower() == ".xml":

@@ -39,7 +39,8 @@ def test_writes_a_spec_that_lints_clean_and_reports_on_stderr(tmp_path, capsys):
 
 
 def test_stdout_output_and_options(capsys):
-    argv = ["import", str(LAMUNIERE), "-o", "-", "--no-hints", "--var-plus", "0.5", "--mindim", "0.5", "-q"]
+    # (no --no-hints: deprecated, it warns on stderr; tests/cli/test_convention.py covers it)
+    argv = ["import", str(LAMUNIERE), "-o", "-", "--var-plus", "0.5", "--mindim", "0.5", "-q"]
     assert main(argv) == exitcodes.OK
     captured = capsys.readouterr()
     assert captured.err == ""
@@ -80,7 +81,9 @@ def test_json_diagnostics(tmp_path, capsys):
     bad = tmp_path / "bad.xml"
     bad.write_text("<building>\n<scale>\n</building>\n")
     assert main(["import", str(bad), "--format", "json"]) == exitcodes.SPEC_ERRORS
-    (item,) = json.loads(capsys.readouterr().err)
+    result = json.loads(capsys.readouterr().out)  # the one result object of --format json
+    assert result["status"] == "errors" and result["written"] == []
+    (item,) = result["diagnostics"]
     assert (item["code"], item["location"]) == ("E400", {"row": 3, "column": 3})
 
 
@@ -95,8 +98,11 @@ def test_invalid_options_are_usage_errors(argv, capsys):
 
 def test_io_errors_are_exit_2(tmp_path, capsys):
     assert main(["import", str(tmp_path / "missing.xml")]) == exitcodes.USAGE
-    assert "E408" in capsys.readouterr().err
-    unwritable = tmp_path / "no-such-dir" / "out.lay"
+    # the one I/O error style of every command (no E408 with an invented location)
+    assert capsys.readouterr().err == (f"layoutdsl import: error: cannot read `{tmp_path / 'missing.xml'}`: "
+                                       "no such file or directory\n")
+    (tmp_path / "a-file").write_text("")
+    unwritable = tmp_path / "a-file" / "out.lay"  # a missing folder is created; one under a file cannot be
     assert main(["import", str(LAMUNIERE), "-o", str(unwritable)]) == exitcodes.USAGE
     assert "cannot write" in capsys.readouterr().err
 

@@ -33,9 +33,25 @@ def test_snapshot(case: Path, tmp_path: Path, monkeypatch, capsys, golden):
     actual = import_output(case, out, monkeypatch, capsys)
     golden(case.with_suffix(".txt"), actual)
     code = re.match(r"([EW]\d{3})_", case.name).group(1)
+    if code == import_codes.UNREADABLE_FILE:
+        # the CLI reports an unreadable input in the one I/O error style of every command
+        # (exit 2, no invented location); E408 is what the API (read_building) returns
+        assert actual.startswith("layoutdsl import: error: cannot read `E408_directory.xml`: is a directory\n")
+        return
     assert f"[{code}]" in actual, "a case must show the code it is named after"
     # an error writes nothing; a warning still writes the spec
     assert out.exists() == code.startswith("W")
+
+
+def test_e408_from_the_api(monkeypatch, golden):
+    """read_building's own diagnostic for an unreadable file, which the CLI never shows."""
+    from layoutdsl.diagnostics.render import render_full
+    from layoutdsl.importer import read_building
+
+    monkeypatch.chdir(HERE)
+    building, diagnostics = read_building("E408_directory.xml")
+    assert building is None and [d.code for d in diagnostics] == ["E408"]
+    golden(HERE / "E408_directory.api.txt", render_full(diagnostics, {}))
 
 
 def test_every_import_code_has_a_snapshot():
