@@ -228,6 +228,7 @@ _STATUS_TEXT = {
     "time_limit": "time limit reached; the best layout found is written",
     "node_limit": "node limit reached; the best layout found is written",
     "solution_limit": "solution limit reached",
+    "iteration_limit": "LP iteration limit reached; the best layout found is written",
     "construction": "constructed layout (SCIP found no better one in time)",
     "interrupted": "interrupted; the best layout found is written",
     "unknown": "solver stopped; the best layout found is written",

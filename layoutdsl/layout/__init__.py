@@ -204,6 +204,10 @@ class SolveInfo:
     seed: int = 0
     method: str = ""
     """How the first feasible layout was found (e.g. 'construction', 'scip', 'cycles')."""
+    wall_clock_limited: bool = False
+    """The time limit (the outer cap) stopped a stage before its deterministic work limits:
+    this layout may differ from the one the same spec and seed give on an idle machine
+    (solve.SolveOutcome.wall_clock_limited)."""
 
 
 @dataclass(frozen=True, slots=True)

@@ -8,7 +8,14 @@ while SCIP runs without the GIL), re-solving one translated model with changed b
 (neighbourhood search), and our own gap.
 
 Console output stays off (`display/verblevel 0`): more than ~64 KiB of SCIP output through
-Pyomo's capture pipe deadlocks the process (shared/notes/solver-scouting.md).
+Pyomo's capture pipe deadlocks the process (shared/notes/solver-scouting.md). What C code
+still writes to fds 1 and 2 (SoPlex's warnings) is discarded by `quiet.native_output_silenced`.
+
+Reproducible: every solve stops at deterministic work limits (branch-and-bound nodes, LP
+iterations, improving solutions, neighbourhood rounds), counted by SCIP on one thread with
+its random seed shifted by the seed, so a spec and a seed give the same layout on an idle
+and on a loaded machine. The wall clock is only the outer cap; a solve that reaches it says
+so (`SolveOutcome.wall_clock_limited`), because its result may then depend on the load.
 """
 
 from __future__ import annotations
@@ -28,7 +35,20 @@ from pyscipopt import SCIP_EVENTTYPE, SCIP_PARAMEMPHASIS, SCIP_PARAMSETTING, Eve
 
 from layoutdsl import private_api
 from layoutdsl.model import Formulation
+from layoutdsl.solve.quiet import native_output_silenced
 from layoutdsl.syntax.ast import EMPHASES, Settings
+
+DEFAULT_NODE_LIMIT = 2000
+"""Branch-and-bound nodes of one solve when the options name no node limit: the
+deterministic stopping rule that stands in for the wall clock."""
+
+DEFAULT_LP_ITERATIONS = 200_000
+"""Simplex iterations of one solve (all its LPs together) when the options name no limit.
+Nodes alone do not bound the work: one node of a 100-room model can take a second."""
+
+POLISH_NODE_LIMIT = 500
+"""Nodes of a polish (binaries fixed: a small nonconvex problem that closes its gap in a
+few dozen nodes on the real plans)."""
 
 GUARD_GRACE_SECONDS = 1.0
 """How far past its time limit a solve may run before our guard interrupts it (SCIP's own
@@ -48,13 +68,17 @@ class SolveOptions:
     emphasis: str = "heuristics"
     """One of EMPHASES: SCIP's meta setting (heuristics = aggressive heuristics)."""
     node_limit: int | None = None
-    """Stop after this many branch-and-bound nodes (deterministic)."""
+    """Stop after this many branch-and-bound nodes (deterministic); None: DEFAULT_NODE_LIMIT."""
     solution_limit: int | None = None
     """Stop after this many improving solutions (deterministic)."""
+    lp_iteration_limit: int | None = None
+    """Stop after this many simplex iterations in all (deterministic); None:
+    DEFAULT_LP_ITERATIONS."""
     quiet: bool = False
     """No progress lines on stderr."""
     threads: int = 1
-    """SCIP is deterministic single-threaded; more threads only for the LP solver."""
+    """SCIP is deterministic single-threaded; more threads only for the LP solver (and a
+    result that may then depend on thread timing)."""
     strategy: str = "auto"
     """auto: first-feasible construction then SCIP; thesis: SCIP from scratch; cycles: §5.5.3
     (layoutdsl.compile dispatches on it; the CLI's STRATEGIES lists them)."""
@@ -90,8 +114,8 @@ class SolveOutcome:
     """What one SCIP run found. The best solution, if any, is loaded on the model."""
 
     status: str
-    """'optimal', 'gap_limit', 'time_limit', 'node_limit', 'solution_limit', 'infeasible',
-    'interrupted' or 'unknown'."""
+    """'optimal', 'gap_limit', 'time_limit', 'node_limit', 'solution_limit',
+    'iteration_limit', 'infeasible', 'interrupted' or 'unknown'."""
     has_solution: bool
     objective: float | None = None
     """SCIP's incumbent value (helper slack may make it higher than (5.1) of the layout)."""
@@ -103,6 +127,11 @@ class SolveOutcome:
     nodes: int = 0
     start_accepted: bool | None = None
     """Whether SCIP accepted the warm start as feasible (None: no start given)."""
+    wall_clock_limited: bool = False
+    """The wall clock (the outer cap) stopped this solve before its deterministic limits:
+    the result may differ on a faster or less loaded machine. SolveInfo carries it."""
+    lp_iterations: int = 0
+    """Simplex iterations spent (a deterministic measure of the work done)."""
 
 
 ProgressCallback = Callable[[float, float | None, float | None], None]
@@ -129,9 +158,14 @@ def stderr_progress(elapsed: float, incumbent: float | None, gap: float | None) 
 
 
 class _Watch(Eventhdlr):
-    """Tracks the incumbent and bound as SCIP finds them, and interrupts SCIP past the hard
-    deadline. Progress lines come from a ticker thread (see _optimize): SCIP can spend long
-    stretches in heuristics' sub-solvers, whose events never reach this handler."""
+    """Tracks the incumbent and bound as SCIP finds them, stops SCIP at its LP-iteration
+    budget, and interrupts it past the hard deadline. Progress lines come from a ticker
+    thread (see _optimize): SCIP can spend long stretches in heuristics' sub-solvers, whose
+    events never reach this handler.
+
+    The iteration budget is checked here, in SCIP's own thread at its own events, so it
+    stops every run at the same point; the deadline is checked by the ticker too, so it
+    stops a run wherever the clock finds it (the outer cap, reported as such)."""
 
     EVENTS = (
         SCIP_EVENTTYPE.BESTSOLFOUND,
@@ -141,8 +175,10 @@ class _Watch(Eventhdlr):
     )
 
     def __init__(self, started: float, hard_deadline: float, progress: ProgressCallback | None,
-                 interval: float = 1.5):
+                 interval: float = 1.5, lp_iteration_limit: int | None = None):
         super().__init__()
+        self.lp_iteration_limit = lp_iteration_limit
+        self.work_limit_fired = False
         self.started = started
         self.hard_deadline = hard_deadline
         self.progress = progress
@@ -170,14 +206,19 @@ class _Watch(Eventhdlr):
         if self.primal is not None and event.getType() in (SCIP_EVENTTYPE.NODESOLVED, SCIP_EVENTTYPE.BESTSOLFOUND):
             dual = self.model.getDualbound()
             self.dual = dual if abs(dual) < self.model.infinity() else None
-        if now >= self.hard_deadline and not self.guard_fired:
+        if (self.lp_iteration_limit is not None and not self.work_limit_fired
+                and event.getType() in (SCIP_EVENTTYPE.NODESOLVED, SCIP_EVENTTYPE.LPSOLVED)
+                and self.model.getNLPIterations() >= self.lp_iteration_limit):
+            self.work_limit_fired = True
+            self.model.interruptSolve()
+        if now >= self.hard_deadline and not self.guard_fired and not self.work_limit_fired:
             self.guard_fired = True
             self.model.interruptSolve()
 
     def tick(self, scip_model) -> None:
         """Called by the ticker thread about four times a second."""
         now = time.monotonic()
-        if now >= self.hard_deadline and not self.guard_fired:
+        if now >= self.hard_deadline and not self.guard_fired and not self.work_limit_fired:
             self.guard_fired = True
             try:
                 scip_model.interruptSolve()  # sets SCIP's interrupt flag; SCIP stops at its next check
@@ -199,7 +240,8 @@ def _optimize(scip_model, watch: _Watch) -> None:
     thread = threading.Thread(target=ticker, name="layoutdsl-scip-ticker", daemon=True)
     thread.start()
     try:
-        scip_model.optimizeNogil()
+        with native_output_silenced():
+            scip_model.optimizeNogil()
     finally:
         stop.set()
         thread.join()
@@ -219,6 +261,9 @@ _STATUS = {
     "inforunbd": "infeasible",
     "userinterrupt": "interrupted",
 }
+
+ITERATION_LIMIT = "iteration_limit"
+"""The status of a solve stopped by its LP-iteration budget (deterministic, like a node limit)."""
 
 
 def _apply_emphasis(scip_model, emphasis: str) -> None:
@@ -252,13 +297,20 @@ def solve(
     when every variable has a value, else the integer ones as a partial start). With
     `feasibility_only` the objective is dropped: SCIP stops at the first feasible layout.
     `progress` is called every ~1.5 s; by default (and unless options.quiet) a line goes to
-    stderr.
+    stderr. The solve stops at options' deterministic limits (nodes, LP iterations,
+    solutions, gap); options.time_limit is the outer cap, and a solve stopped by it says so.
     """
     if progress is None and not options.quiet:
         progress = stderr_progress
     if options.quiet:
         progress = None
     started = time.monotonic()
+    with native_output_silenced():
+        return _solve(model, options, progress, warm_start, feasibility_only, started)
+
+
+def _solve(model: pyo.ConcreteModel, options: SolveOptions, progress: ProgressCallback | None,
+           warm_start: bool, feasibility_only: bool, started: float) -> SolveOutcome:
     interface, scip_model, loader = _translate(model, feasibility_only=feasibility_only)
     _configure(scip_model, options, remaining=options.time_limit - (time.monotonic() - started))
     if feasibility_only:
@@ -268,20 +320,24 @@ def solve(
     if warm_start:
         start_accepted = _add_start(interface, scip_model, model, feasibility_only)
 
-    watch = _Watch(started, started + options.time_limit + GUARD_GRACE_SECONDS, progress)
+    watch = _Watch(started, started + options.time_limit + GUARD_GRACE_SECONDS, progress,
+                   lp_iteration_limit=_lp_iteration_limit(options))
     if start_accepted and not feasibility_only:
         watch.primal = pyo.value(model.eq5_1_objective.expr)  # no event announces a start
-    scip_model.includeEventhdlr(watch, "layoutdsl_watch", "progress and wall-clock guard")
+    scip_model.includeEventhdlr(watch, "layoutdsl_watch", "progress, work limit and wall-clock guard")
     _optimize(scip_model, watch)
     seconds = time.monotonic() - started
 
     raw = scip_model.getStatus()
     status = _STATUS.get(raw, "unknown")
     if status == "interrupted":
-        if not watch.guard_fired:
+        if watch.work_limit_fired:
+            status = ITERATION_LIMIT
+        elif not watch.guard_fired:
             scip_model.freeProb()
             raise KeyboardInterrupt  # SCIP caught the user's Ctrl-C: stop the whole compile
-        status = "time_limit"
+        else:
+            status = "time_limit"
     has_solution = scip_model.getNSols() > 0
     primal = bound = None
     if has_solution:
@@ -307,9 +363,15 @@ def solve(
         first_solution_seconds=first,
         nodes=int(scip_model.getNNodes()),
         start_accepted=start_accepted,
+        wall_clock_limited=status == "time_limit",
+        lp_iterations=int(scip_model.getNLPIterations()),
     )
     scip_model.freeProb()
     return outcome
+
+
+def _lp_iteration_limit(options: SolveOptions) -> int:
+    return DEFAULT_LP_ITERATIONS if options.lp_iteration_limit is None else int(options.lp_iteration_limit)
 
 
 def _translate(model: pyo.ConcreteModel, *, feasibility_only: bool = False):
@@ -337,11 +399,15 @@ def _configure(scip_model, options: SolveOptions, *, remaining: float) -> None:
     _apply_emphasis(scip_model, options.emphasis)
     scip_model.setParam("randomization/randomseedshift", int(options.seed) % 2**31)
     scip_model.setParam("lp/threads", max(1, int(options.threads)))
-    scip_model.setParam("timing/clocktype", 2)  # wall clock: the limit a user means
+    scip_model.setParam("parallel/maxnthreads", max(1, int(options.threads)))
+    scip_model.setParam("timing/clocktype", 2)  # wall clock: the outer cap a user means
     scip_model.setParam("limits/time", max(0.05, remaining))
     scip_model.setParam("limits/gap", float(options.gap))
-    if options.node_limit is not None:
-        scip_model.setParam("limits/nodes", int(options.node_limit))
+    # the deterministic stopping rules: nodes of this run and of all its restarts together
+    # (SCIP's limits/nodes restarts counting after a presolve restart)
+    nodes = DEFAULT_NODE_LIMIT if options.node_limit is None else int(options.node_limit)
+    scip_model.setParam("limits/nodes", nodes)
+    scip_model.setParam("limits/totalnodes", nodes)
     if options.solution_limit is not None:
         scip_model.setParam("limits/solutions", int(options.solution_limit))
 
@@ -409,7 +475,8 @@ def polish(model: pyo.ConcreteModel, options: SolveOptions, *, gap: float = 1e-4
     for constraint in idle:
         constraint.deactivate()
     try:
-        return solve(model, replace(options, gap=gap, emphasis="default", node_limit=None, solution_limit=None),
+        return solve(model, replace(options, gap=gap, emphasis="default", node_limit=POLISH_NODE_LIMIT,
+                                    solution_limit=None, lp_iteration_limit=None),
                      warm_start=True)
     finally:
         for var in binaries:
@@ -450,6 +517,8 @@ class NeighbourhoodOutcome:
     objective: float
     """The model's objective at the end (SCIP's form, helper slack included)."""
     seconds: float
+    wall_clock_limited: bool = False
+    """The deadline stopped the search (or one of its rounds) before its deterministic rules."""
 
 
 def _binaries_by_rooms(model: pyo.ConcreteModel) -> list[tuple[object, tuple[str, ...]]]:
@@ -524,20 +593,24 @@ def improve_by_neighbourhoods(
     *,
     deadline: float,
     size: int = 4,
-    sub_seconds: float = 2.0,
     sub_nodes: int = 200,
+    sub_lp_iterations: int = 20_000,
+    max_rounds: int | None = None,
     progress: ProgressCallback | None = None,
+    sub_seconds: float | None = None,
 ) -> NeighbourhoodOutcome:
     """Large-neighbourhood search from the layout on the model, until `deadline`.
 
     Each round frees one room and the `size - 1` rooms nearest its walls: their binaries (relations,
     orientations, sides) and their geometry; every other room keeps its place, size and
     relations. SCIP re-places the neighbourhood (warm-started from the current layout, at
-    most `sub_nodes` branch-and-bound nodes and `sub_seconds`). After an improvement, a polish
-    round keeps every binary and frees all geometry. Rooms are visited in an order drawn from the seed; the search stops at the
-    deadline or after a full pass without an improvement; rounds stop at a node limit, so
-    unless a round or the whole search runs into its time limit, the result depends only on
-    the seed. Branch-and-bound over the whole model rarely improves a
+    most `sub_nodes` branch-and-bound nodes and `sub_lp_iterations` simplex iterations).
+    After an improvement, a polish round keeps every binary and frees all geometry. Rooms
+    are visited in an order drawn from the seed; the search stops after a full pass without
+    an improvement or after `max_rounds` rounds (default: three per room). Those rules are
+    deterministic, so the result depends only on the seed; `deadline` is only the outer
+    cap, and the outcome says when it stopped the search. (`sub_seconds`, a per-round wall
+    clock that made rounds end differently under load, is accepted and ignored.) Branch-and-bound over the whole model rarely improves a
     layout of 15+ rooms within a minute (its area terms are nonconvex for every room); a
     neighbourhood of four rooms solves in about a second.
     """
@@ -546,11 +619,18 @@ def improve_by_neighbourhoods(
     if options.quiet:
         progress = None
     started = time.monotonic()
+    with native_output_silenced():
+        return _improve_by_neighbourhoods(model, options, deadline, size, sub_nodes, sub_lp_iterations,
+                                          max_rounds, progress, started)
+
+
+def _improve_by_neighbourhoods(model, options, deadline, size, sub_nodes, sub_lp_iterations, max_rounds,
+                               progress, started) -> NeighbourhoodOutcome:
     interface, scip_model, loader = _translate(model)
     sub_options = replace(options, gap=1e-4, emphasis="default", node_limit=sub_nodes, solution_limit=None)
-    _configure(scip_model, sub_options, remaining=sub_seconds)
+    _configure(scip_model, sub_options, remaining=max(0.05, deadline - time.monotonic()))
     scip_model.setPresolve(SCIP_PARAMSETTING.FAST)  # measured: sub-problems solve faster
-    watch = _Watch(started, deadline + GUARD_GRACE_SECONDS, None)
+    watch = _Watch(started, deadline + GUARD_GRACE_SECONDS, None, lp_iteration_limit=sub_lp_iterations)
     scip_model.includeEventhdlr(watch, "layoutdsl_watch", "wall-clock guard")
     var_map = private_api.scip_variables(interface)
     binaries = [(var, var_map[var], owners) for var, owners in _binaries_by_rooms(model) if var in var_map]
@@ -558,11 +638,17 @@ def improve_by_neighbourhoods(
                   for r, vs in _continuous_by_room(model).items()}
     order = list(model.rooms)
     random.Random(options.seed).shuffle(order)
+    if max_rounds is None:
+        max_rounds = 3 * len(order)
     objective = pyo.value(model.eq5_1_objective.expr)
     rounds = improvements = stale = visits = 0
     polish_next = False
+    clock_stopped = False
     next_report = started + 1.5
-    while stale < len(order) and deadline - time.monotonic() > 0.1:
+    while stale < len(order) and rounds < max_rounds:
+        if deadline - time.monotonic() <= 0.1:
+            clock_stopped = True
+            break
         rounds += 1
         if polish_next:
             free_binaries, free_rooms = set(), set(model.rooms)
@@ -571,12 +657,18 @@ def improve_by_neighbourhoods(
             visits += 1
         scip_model.freeTransform()
         _free_only(scip_model, binaries, continuous, free_binaries, free_rooms)
-        scip_model.setParam("limits/time", max(0.05, min(sub_seconds, deadline - time.monotonic())))
+        # the clock is only the outer cap; each round stops at its node and iteration limits
+        scip_model.setParam("limits/time", max(0.05, deadline - time.monotonic()))
+        watch.work_limit_fired = False
         _add_start(interface, scip_model, model, False, partial_fallback=False)
         _optimize(scip_model, watch)
-        if scip_model.getStatus() == "userinterrupt" and not watch.guard_fired:
+        round_status = scip_model.getStatus()
+        if round_status == "userinterrupt" and not watch.guard_fired and not watch.work_limit_fired:
             scip_model.freeProb()
             raise KeyboardInterrupt  # SCIP caught the user's Ctrl-C: stop the whole compile
+        if round_status == "timelimit" or watch.guard_fired:
+            clock_stopped = True  # this round's answer depends on the load: keep what came before
+            break
         # improvements below a tenth of the target gap are noise that would keep the search
         # going without changing the answer
         threshold = max(1e-6, options.gap / 10) * max(1.0, abs(objective))
@@ -597,4 +689,5 @@ def improve_by_neighbourhoods(
             next_report = now + 1.5
             progress(now - started, objective, None)
     scip_model.freeProb()
-    return NeighbourhoodOutcome(rounds, improvements, objective, time.monotonic() - started)
+    return NeighbourhoodOutcome(rounds, improvements, objective, time.monotonic() - started,
+                                wall_clock_limited=clock_stopped)

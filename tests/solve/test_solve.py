@@ -89,3 +89,38 @@ def test_a_neighbourhood_takes_the_rooms_across_a_rooms_walls_before_nearer_cent
         model.h[r].set_value(h)
     assert _nearest_rooms(model, "K", 2) == {"K", "A"}
     assert _nearest_rooms(model, "K", 3) == {"K", "A", "B"}
+
+
+def _values(model):
+    return [v.value for v in model.component_data_objects(pyo.Var, active=True)]
+
+
+def test_work_limits_stop_a_solve_at_the_same_point_whatever_the_time_limit():
+    # the wall clock is only the outer cap: two generous caps give the same layout, bit for bit
+    spec, _ = planted(2, 2)
+    results = []
+    for cap in (60.0, 300.0):
+        model = build_model(spec)
+        outcome = solve(model, SolveOptions(time_limit=cap, quiet=True, node_limit=40, seed=3))
+        assert outcome.status in ("node_limit", "optimal", "gap_limit") and not outcome.wall_clock_limited
+        results.append((outcome.status, outcome.nodes, outcome.lp_iterations, _values(model)))
+    assert results[0] == results[1]
+
+
+def test_an_iteration_budget_stops_a_solve_deterministically():
+    spec, _ = planted(3, 2)
+    runs = []
+    for _ in range(2):
+        model = build_model(spec)
+        outcome = solve(model, SolveOptions(time_limit=120, quiet=True, lp_iteration_limit=300, seed=1))
+        assert outcome.status == "iteration_limit" and not outcome.wall_clock_limited
+        assert outcome.lp_iterations >= 300
+        runs.append((outcome.nodes, outcome.lp_iterations, outcome.has_solution))
+    assert runs[0] == runs[1]
+
+
+def test_a_solve_stopped_by_the_wall_clock_says_so():
+    spec, _ = planted(6, 3)  # 39 rooms from scratch: no deterministic limit comes first in 1 s
+    outcome = solve(build_model(spec), SolveOptions(time_limit=1.0, quiet=True, node_limit=10**9,
+                                                    lp_iteration_limit=10**12))
+    assert outcome.status == "time_limit" and outcome.wall_clock_limited
