@@ -1,17 +1,20 @@
 """`layoutdsl evaluate ORIGINAL.xml GENERATED.xml... -o REPORT_DIR`: the realism report.
 
-Reads every plan with the project's XML reader; an unreadable plan is a located diagnostic
-on stderr (exit 1), never a traceback. The report files are written all or nothing.
+Reads every plan with the project's XML reader; a plan with errors is a located diagnostic
+on stderr (exit 1), a file that cannot be read at all the common I/O error (exit 2), never a
+traceback. The report files are written all or nothing.
 """
 
 from __future__ import annotations
 
 import argparse
-import sys
 import time
 
-from layoutdsl.diagnostics import exitcodes
+from pathlib import Path
+
 from layoutdsl.cli.argtypes import non_negative_float, positive_float
+from layoutdsl.cli.output import Output, add_command, add_output_arguments
+from layoutdsl.diagnostics import exitcodes
 from layoutdsl.diagnostics import has_errors
 from layoutdsl.evaluate.explore import ExploreSettings
 from layoutdsl.evaluate.plan import EvaluateOptions
@@ -20,18 +23,22 @@ from layoutdsl.evaluate.plan import EvaluateOptions
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register the `evaluate` subcommand."""
     defaults = EvaluateOptions()
-    parser = subparsers.add_parser(
-        "evaluate",
+    parser = add_command(
+        subparsers, "evaluate",
         help="compare generated plans with their original (topology, areas, paths, exploration)",
         description=(
             "Measure how much generated building plans behave like the real one they come "
             "from (the thesis, §6.4-6.5): room graph, areas and room sizes, path lengths between "
             "entrances, and the effort of a simulated frontier exploration. Writes "
-            "report.json, report.md and PNG plots into REPORT_DIR."
+            "report.json, report.md and PNG plots into REPORT_DIR (created if needed)."
         ),
-        epilog=exitcodes.EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+        examples=[
+            ("compare two variants with the plan they come from",
+             "layoutdsl evaluate plan.xml out/plan-v1.xml out/plan-v2.xml -o report"),
+            ("the same exploration start in every plan, the result as JSON",
+             "layoutdsl evaluate plan.xml out/plan-v1.xml -o report --start-room E0 --format json"),
+        ],
+    )  # fmt: skip
     parser.add_argument("original", metavar="ORIGINAL.xml", help="the real plan (building XML)")
     parser.add_argument("generated", nargs="+", metavar="GENERATED.xml", help="generated plans (building XML)")
     parser.add_argument("-o", "--output", required=True, metavar="REPORT_DIR", help="directory for the report")
@@ -55,40 +62,44 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         "--start-room", default=None, metavar="ID",
         help="room the exploration starts in, the same in every plan (default: the first entrance, E0)",
     )  # fmt: skip
-    parser.add_argument("-q", "--quiet", action="store_true", help="print no progress on stderr")
+    add_output_arguments(parser, diagnostics=True)
     parser.set_defaults(run=run)
     return parser
 
 
-def _read_plans(paths: list[str]):
+def _read_plans(paths: list[str], out: Output):
+    """The plans, their diagnostics, and whether a file could not be read at all (exit 2)."""
     from layoutdsl.importer import read_building
-    from layoutdsl.diagnostics.render import render_full
     from layoutdsl.diagnostics.source import Source
 
     buildings, diagnostics, sources = [], [], {}
     for path in paths:
+        out.reading(path)
+        try:  # one I/O error style for every command: exit 2, no diagnostic with a made-up place
+            text = Path(path).read_bytes().decode("utf-8", errors="replace")
+        except OSError as error:
+            out.cannot_read(path, error)
+            return None, diagnostics, True
         building, found = read_building(path)
         diagnostics.extend(found)
         if found:
-            try:
-                with open(path, encoding="utf-8", errors="replace") as handle:
-                    sources[path] = Source(path, handle.read())
-            except OSError:
-                pass
+            sources[path] = Source(path, text)
         buildings.append(building)
-    if diagnostics:
-        sys.stderr.write(render_full(diagnostics, sources))
-    return buildings, diagnostics
+    out.diagnostics(diagnostics, sources)
+    return buildings, diagnostics, False
 
 
 def run(args: argparse.Namespace) -> int:
-    """Evaluate the plans and write the report; exit 1 when a plan cannot be read."""
+    """Evaluate the plans and write the report; exit 1 when a plan has errors, 2 when unreadable."""
     from layoutdsl.evaluate.report import evaluate, map_check_warnings, write_report
 
+    out = Output("evaluate", args)
     files = [args.original, *args.generated]
-    buildings, diagnostics = _read_plans(files)
+    buildings, diagnostics, unreadable = _read_plans(files, out)
+    if unreadable:
+        return out.finish(exitcodes.USAGE)
     if has_errors(diagnostics) or any(b is None for b in buildings):
-        return exitcodes.SPEC_ERRORS
+        return out.finish(exitcodes.SPEC_ERRORS)
     if args.explore_resolution < args.resolution:
         args.explore_resolution = args.resolution
     options = EvaluateOptions(
@@ -100,29 +111,28 @@ def run(args: argparse.Namespace) -> int:
         explore=ExploreSettings(),
     )
     if args.start_room is not None:
+        from layoutdsl.diagnostics.suggest import did_you_mean
         from layoutdsl.evaluate.topology import room_ids
 
-        known = set(room_ids(buildings[0]).values())
+        known = sorted(set(room_ids(buildings[0]).values()))
         if args.start_room not in known:
-            print(
-                f"layoutdsl evaluate: start room `{args.start_room}` is not a room of {args.original}",
-                file=sys.stderr,
-            )
-            return exitcodes.USAGE
+            guess = did_you_mean(args.start_room, known)
+            return out.finish(out.error(f"start room `{args.start_room}` is not a room of {args.original}"
+                                        + (f" ({guess})" if guess else "")))
+    out.progress(f"evaluating {len(buildings) - 1} plans against {args.original}")
     started = time.monotonic()
     try:
-        report = evaluate(buildings[0], buildings[1:], files, options)
+        with out.timed("evaluate"):
+            report = evaluate(buildings[0], buildings[1:], files, options)
     except (ValueError, MemoryError) as error:
-        print(f"layoutdsl evaluate: cannot evaluate: {error}", file=sys.stderr)
-        return exitcodes.USAGE
+        return out.finish(out.error(f"cannot evaluate: {error}"))
     for line in map_check_warnings(report):
-        print(f"warning: {line}", file=sys.stderr)
+        out.warning(line)
     try:
         written = write_report(report, args.output)
     except OSError as error:
-        print(f"layoutdsl evaluate: cannot write {args.output}: {error.strerror or error}", file=sys.stderr)
-        return exitcodes.USAGE
-    if not args.quiet:
-        elapsed = time.monotonic() - started
-        print(f"wrote {len(written)} files to {args.output} in {elapsed:.1f} s", file=sys.stderr)
-    return exitcodes.OK
+        return out.finish(out.cannot_write(args.output, error))
+    out.wrote(*written)
+    elapsed = time.monotonic() - started
+    out.summary(f"wrote {len(written)} files to {args.output} in {elapsed:.1f} s")
+    return out.finish(exitcodes.OK, report=str(Path(args.output) / "report.json"))

@@ -31,8 +31,9 @@ def test_unreadable_xml_gives_a_located_diagnostic_and_exit_1(tmp_path):
 
 def test_missing_file_is_a_diagnostic_not_a_traceback(tmp_path):
     result = _run(tmp_path / "nope.xml", tmp_path / "nope.xml", "-o", tmp_path / "r")
-    assert result.returncode == 1
-    assert "cannot read" in result.stderr and "Traceback" not in result.stderr
+    assert result.returncode == 2  # the one I/O exit code of every command (issue 42)
+    assert result.stderr.startswith(f"layoutdsl evaluate: error: cannot read `{tmp_path / 'nope.xml'}`: ")
+    assert "Traceback" not in result.stderr
 
 
 def test_bad_options_are_usage_errors(tmp_path):
