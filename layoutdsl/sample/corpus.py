@@ -28,8 +28,9 @@ OTHER_KIND = "other"
 DEFAULT_LABELS = {"R": "ROOM", "C": "CORRIDOR", "E": "ENTRANCE"}
 """A space without a label gets its type's word, as the importer names it."""
 
-SHARED_CORPUS = Path("/work/shared/floorplans")
-"""The 24-plan development corpus, where the project's machines keep it."""
+SHARED_CORPUS = Path(__file__).resolve().parents[3] / "shared" / "floorplans"
+"""The 24-plan development corpus, where CI and the project's machines keep it: beside the
+repository, in `../shared/floorplans`."""
 
 BUNDLED_CORPUS = Path(__file__).resolve().parents[2] / "examples" / "floorplans"
 """The four plans that ship with the repository (examples/floorplans)."""
