@@ -12,6 +12,7 @@ import os
 import sys
 
 from layoutdsl import __version__
+from layoutdsl.cli.output import HelpFormatter, examples_block
 from layoutdsl.diagnostics import exitcodes
 
 # command name -> (module under layoutdsl.cli, one-line help), in the order --help lists them.
@@ -38,8 +39,13 @@ def build_parser(command: str | None = None) -> argparse.ArgumentParser:
             "Follows Carideo, Procedural generation of realistic building layouts from graphs\n"
             "(Politecnico di Milano, 2019); \"the thesis, §5.4\" in messages means its sections."
         ),
-        epilog=exitcodes.EPILOG,
-        formatter_class=argparse.RawDescriptionHelpFormatter,
+        epilog=examples_block([
+            ("check a spec, then compile it into out/", "layoutdsl lint specs/office_small.lay"),
+            ("", "layoutdsl compile specs/office_small.lay -o out"),
+            ("what a diagnostic code means", "layoutdsl explain E102"),
+            ("a command's options and examples", "layoutdsl compile --help"),
+        ]) + "\n" + exitcodes.EPILOG + "\nEvery command takes -q/--quiet, -v/--verbose and --format text|json.\n",
+        formatter_class=HelpFormatter,
     )
     parser.add_argument("--version", action="version", version=f"layoutdsl {__version__}")
     subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")

@@ -77,7 +77,8 @@ def examples_block(examples: Iterable[tuple[str, str]]) -> str:
     """`examples:` then, per example, `  # what it does` and `  $ command`."""
     lines = ["examples:"]
     for what, command in examples:
-        lines.append(f"  # {what}")
+        if what:  # an empty description continues the example above
+            lines.append(f"  # {what}")
         lines.append(f"  $ {command}")
     return "\n".join(lines) + "\n"
 

@@ -32,7 +32,7 @@ BY_COMMAND: dict[str, tuple[int, ...]] = {
     "import": (OK, SPEC_ERRORS, USAGE),
     "evaluate": (OK, SPEC_ERRORS, USAGE),
     "batch": (OK, SPEC_ERRORS, USAGE, NO_LAYOUT),
-    "sample": (OK, SPEC_ERRORS, USAGE, NO_LAYOUT),
+    "sample": (OK, SPEC_ERRORS, USAGE),
     "explain": (OK, USAGE),
     "lsp": (OK, USAGE),
 }
