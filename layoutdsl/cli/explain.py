@@ -16,7 +16,7 @@ from importlib import resources
 
 from layoutdsl.diagnostics import exitcodes
 
-_CODE = re.compile(r"[EW]\d{3}")
+_CODE = re.compile(r"[EWI]\d{3}")  # I: info notes (layoutdsl.sizes.resolve)
 
 
 def pages() -> dict[str, str]:
@@ -47,7 +47,7 @@ def suggestion(wrong: str, codes: list[str]) -> str | None:
     (`W102` for `E102`), then the closest by edit distance."""
     normal = wrong.strip().upper()
     normal = normal[:1] + normal[1:].translate(str.maketrans("OIL", "011"))
-    for letter in "EW":
+    for letter in "EWI":
         if len(normal) == 4 and letter + normal[1:] in codes:
             return letter + normal[1:]
     close = difflib.get_close_matches(normal, codes, n=1, cutoff=0.5)

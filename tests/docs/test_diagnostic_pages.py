@@ -13,7 +13,7 @@ from layoutdsl.cli.explain import pages, severity, suggestion, title
 from layoutdsl.diagnostics import load_all_codes
 
 PACKAGE = Path(__file__).resolve().parents[2] / "layoutdsl"
-CODE_LITERAL = re.compile(r"""["']([EW]\d{3})["']""")
+CODE_LITERAL = re.compile(r"""["']([EWI]\d{3})["']""")
 
 
 def codes_in_source() -> set[str]:
