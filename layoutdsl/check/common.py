@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import difflib
 from collections.abc import Iterable
 
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.diagnostics.source import Span
+from layoutdsl.diagnostics.suggest import did_you_mean as suggest_by_edits
 from layoutdsl.syntax.ast import Room, Spec
 
 FALLBACK_SPAN = Span(1, 1, 1, 2)
@@ -37,9 +37,9 @@ def diag(spec: Spec, code: str, message: str, span: Span, label: str = "", help:
 
 
 def did_you_mean(word: str, candidates: Iterable[str]) -> str | None:
-    """A help line naming the closest candidate, or None."""
-    match = difflib.get_close_matches(word, list(candidates), n=1, cutoff=0.6)
-    return f"did you mean `{match[0]}`?" if match else None
+    """A help line naming the closest candidate, or None (by edit distance: difflib's ratio
+    cutoff rejected every two-letter room id; see layoutdsl.diagnostics.suggest)."""
+    return suggest_by_edits(word, candidates)
 
 
 def rooms_by_id(spec: Spec) -> dict[str, Room]:
