@@ -138,7 +138,7 @@ def run(args: argparse.Namespace) -> int:
         emphasis=args.emphasis,
         node_limit=args.node_limit,
         solution_limit=args.solution_limit,
-        quiet=not out.verbose,  # the solver's own log is a detail: -v shows it
+        quiet=out.quiet,  # the solver's progress lines on stderr are progress: not with -q
         strategy=args.strategy,
     )
     if args.variants:
