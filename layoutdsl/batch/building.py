@@ -188,6 +188,8 @@ def make_building(job: Job) -> Outcome:
     if violations:
         return Outcome(job.building, False, f"verify: {violations[0].rule}: {violations[0].message}")
     files = {f"{job.building}.layout.json": layout_json.encode("utf-8")}
+    if job.kind == "sample":  # a sampled spec exists nowhere else (layoutdsl.batch.sampled)
+        files[f"{job.building}.lay"] = job.text.encode("utf-8")
     files.update(render_outputs(layout, job.building, job.formats))
     info = layout.solve
     facts = {

@@ -59,7 +59,7 @@ class Job:
     source: str
     """The input file as the user named it (for the manifest)."""
     kind: str
-    """'spec' or 'plan' (building XML)."""
+    """'spec', 'plan' (building XML) or 'sample' (a spec the sampler drew: layoutdsl.batch.sampled)."""
     text: str
     source_sha256: str
     variant: int

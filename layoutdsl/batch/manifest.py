@@ -114,6 +114,14 @@ def is_done(outdir: Path, record: dict | None, fingerprint: str) -> bool:
 
 
 def write_manifest(outdir: Path, buildings: list[str], records: dict[str, dict]) -> Path:
-    """Rewrite manifest.jsonl atomically: each listed building with a record, once, in order."""
+    """Rewrite manifest.jsonl atomically (unless it already says the same): each listed
+    building with a record, once, in order."""
     lines = [json.dumps({key: records[b].get(key) for key in RECORD_FIELDS}) for b in buildings if b in records]
-    return write_text_atomic(outdir / MANIFEST_NAME, "".join(line + "\n" for line in lines))
+    text = "".join(line + "\n" for line in lines)
+    path = outdir / MANIFEST_NAME
+    try:
+        if path.read_text(encoding="utf-8") == text:
+            return path  # a re-run with nothing to do rewrites nothing, not even the manifest
+    except (OSError, UnicodeDecodeError):
+        pass
+    return write_text_atomic(path, text)

@@ -40,12 +40,19 @@ def add_parser(subparsers) -> None:
             "has one JSON record per building (load it with pandas.read_json(path, lines=True)).\n"
             "Run the same command again to finish an interrupted or partly failed batch: done\n"
             "buildings whose files are intact are skipped. Seeds come from (plan name, variant,\n"
-            "--seed), so a building's bytes do not depend on where or when it ran."
+            "--seed), so a building's bytes do not depend on where or when it ran.\n"
+            "--sample school:1000 adds 1,000 new buildings whose room graphs and sizes the sampler\n"
+            "draws (layoutdsl sample); --seed also seeds the sampler, so a re-run draws the same specs."
         ),
         epilog=exitcodes.EPILOG + "  (batch: 3 when at least one building failed; see the manifest)\n",
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("inputs", nargs="+", metavar="INPUT", help="spec, plan, folder or list file")
+    parser.add_argument("inputs", nargs="*", metavar="INPUT", help="spec, plan, folder or list file")
+    parser.add_argument("--sample", action="append", default=[], metavar="KIND:N",
+                        help="also make N new buildings of a kind drawn by the sampler (e.g. school:1000; "
+                        "see `layoutdsl sample`); each building's folder gets its spec; repeatable")
+    parser.add_argument("--sample-model", metavar="FILE",
+                        help="the sampler's grammar, saved by `layoutdsl sample --save-model` (default: the shipped one)")
     parser.add_argument("-o", "--output", required=True, metavar="OUTDIR", help="the dataset's folder")
     parser.add_argument("--variants", type=positive_int, default=1, metavar="N",
                         help="buildings per input (default 1)")
@@ -113,9 +120,21 @@ def run(args: argparse.Namespace) -> int:
     limits = SolveLimits(time_limit=args.time_limit, node_limit=args.node_limit, solution_limit=args.solution_limit,
                          gap=args.gap, emphasis=args.emphasis, strategy=args.strategy, search=args.search)
     timeout = args.timeout or 2 * args.time_limit + 60
+    if not args.inputs and not args.sample:
+        return _error("give specs, plans, folders or list files, or --sample KIND:N")
     try:
         jobs = plan_jobs(args.inputs, args.variants, base_seed=args.seed, limits=limits,
-                         formats=formats, timeout=timeout)
+                         formats=formats, timeout=timeout) if args.inputs else []
+        if args.sample:
+            from layoutdsl.batch.sampled import parse_sample, sample_jobs
+
+            jobs += sample_jobs([parse_sample(text) for text in args.sample], args.variants,
+                                base_seed=args.seed, model=args.sample_model, limits=limits,
+                                formats=formats, timeout=timeout)
+        names = [job.building for job in jobs]
+        if len(set(names)) != len(names):
+            clash = next(name for name in names if names.count(name) > 1)
+            raise BatchInputError(f"two buildings would be named `{clash}`: rename the input or drop the repeated --sample")
     except BatchInputError as error:
         return _error(str(error))
     workers = args.workers or default_workers()
