@@ -132,6 +132,8 @@ class SolveOutcome:
     the result may differ on a faster or less loaded machine. SolveInfo carries it."""
     lp_iterations: int = 0
     """Simplex iterations spent (a deterministic measure of the work done)."""
+    crash_detail: str | None = None
+    """For a search whose process died or hung (solve.isolated): how ('killed by SIGABRT')."""
 
 
 ProgressCallback = Callable[[float, float | None, float | None], None]

@@ -11,8 +11,16 @@ instead, the parent gets a 'solver_crashed' outcome without a solution and keeps
 A child can also hang instead of dying: measured on school_RomainRolland1 and
 office_324-Elm-Furn-Plan, glibc's `malloc(): invalid size` abort left the child's two
 threads (SCIP's and the progress ticker) waiting on each other's locks for good. The
-parent therefore waits at most the search's time limit plus CHILD_GRACE_SECONDS, then
-kills the child and reports the crash.
+parent therefore waits at most the search's time limit plus a grace (child_grace), then
+kills the child and reports the crash, saying which of the two happened (`crash_detail`).
+
+The grace used to be a flat 5 s, and a child that was merely slow was reported as hung:
+the child translates the model, SCIP overshoots its limit by up to an LP solve, and the
+model is freed, all before it answers. Measured on school_wilbraham (52 rooms, kept
+arrangement) at a load of 5.5 on 2 cores: a search given 0.5 s answered after 3.3 s. With
+8 processes on 2 cores such a child passes 5 s, and the compile said "the solver's search
+aborted or hung (a crash inside SCIP)" although nothing had crashed. The grace now grows
+with the search's limit and the model's size (child_grace).
 
 Forking is safe only while the process has no other thread (a lock another thread holds
 stays held in the child); otherwise, and where there is no fork (Windows), the search runs
@@ -36,10 +44,19 @@ from layoutdsl.solve import ProgressCallback, SolveOptions, SolveOutcome, solve
 SOLVER_CRASHED = "solver_crashed"
 """The status of a search whose child process died (SCIP aborted or was killed) or hung."""
 
-CHILD_GRACE_SECONDS = 5.0
-"""Seconds past the search's time limit the parent waits for the child's answer: SCIP's
-own wall-clock guard stops it within about a second (solve.GUARD_GRACE_SECONDS), and
-sending the values back takes milliseconds."""
+CHILD_GRACE_SECONDS = 10.0
+"""Seconds past the search's time limit the parent waits at least for the child's answer:
+SCIP's own wall-clock guard stops it within about a second (solve.GUARD_GRACE_SECONDS) on
+an idle machine; translating and freeing a large model and the machine's load add the rest
+(see child_grace)."""
+
+
+def child_grace(time_limit: float, variables: int) -> float:
+    """Seconds past `time_limit` before a silent child counts as hung: CHILD_GRACE_SECONDS,
+    plus a quarter of the limit (an LP solve SCIP cannot interrupt grows with the search),
+    plus a second per 5000 variables (translating and freeing the model; a 52-room model
+    has about 12 000)."""
+    return CHILD_GRACE_SECONDS + 0.25 * max(0.0, time_limit) + variables / 5000
 
 
 def can_isolate() -> bool:
@@ -86,7 +103,7 @@ def solve_isolated(
         os._exit(code)
     os.close(write_end)
     try:
-        data = _read_until(read_end, started + options.time_limit + CHILD_GRACE_SECONDS)
+        data = _read_until(read_end, started + options.time_limit + child_grace(options.time_limit, len(variables)))
     except KeyboardInterrupt:
         _kill(pid)
         raise
@@ -94,14 +111,17 @@ def solve_isolated(
         os.close(read_end)
     if data is None:  # the child hangs: it will not answer
         _kill(pid)
-        return SolveOutcome(status=SOLVER_CRASHED, has_solution=False,
-                            seconds=time.monotonic() - started)
-    os.waitpid(pid, 0)
+        seconds = time.monotonic() - started
+        return SolveOutcome(status=SOLVER_CRASHED, has_solution=False, seconds=seconds,
+                            wall_clock_limited=True,
+                            crash_detail=f"no answer {seconds - options.time_limit:.1f} s past its "
+                                         f"{options.time_limit:.1f} s limit: killed")
+    _, wait_status = os.waitpid(pid, 0)
     try:
         kind, outcome, values = pickle.loads(data)
     except Exception:  # noqa: BLE001  (nothing or a torn message: the child died)
         return SolveOutcome(status=SOLVER_CRASHED, has_solution=False,
-                            seconds=time.monotonic() - started)
+                            seconds=time.monotonic() - started, crash_detail=_death(wait_status))
     if kind == "interrupted":
         raise KeyboardInterrupt
     if kind == "error":
@@ -126,6 +146,18 @@ def _read_until(fd: int, deadline: float) -> bytes | None:
         if not chunk:
             return b"".join(chunks)
         chunks.append(chunk)
+
+
+def _death(wait_status: int) -> str:
+    """How the child ended, in words ('killed by SIGABRT', 'exit code 1')."""
+    if os.WIFSIGNALED(wait_status):
+        number = os.WTERMSIG(wait_status)
+        try:
+            name = signal.Signals(number).name
+        except ValueError:
+            name = f"signal {number}"
+        return f"killed by {name}"
+    return f"exit code {os.WEXITSTATUS(wait_status)} without an answer"
 
 
 def _kill(pid: int) -> None:

@@ -74,9 +74,9 @@ def test_a_child_that_aborts_gives_a_crashed_outcome_and_leaves_the_model_as_it_
         isolated.solve = abort
         outcome = solve_isolated(model, OPTIONS)
         print(json.dumps({"status": outcome.status, "has": outcome.has_solution,
-                          "unchanged": values(model) == before}))
+                          "unchanged": values(model) == before, "detail": outcome.crash_detail}))
     """)
-    assert result == {"status": "solver_crashed", "has": False, "unchanged": True}
+    assert result == {"status": "solver_crashed", "has": False, "unchanged": True, "detail": "killed by SIGABRT"}
 
 
 def test_an_error_in_the_child_is_raised_in_the_parent_as_it_was():
@@ -118,3 +118,11 @@ def test_a_child_that_hangs_is_killed_after_its_time_limit_and_reported_crashed(
     """)
     assert result["status"] == "solver_crashed" and not result["has"]
     assert result["seconds"] < 10
+
+
+def test_a_slow_child_is_given_time_in_proportion_to_its_search_and_model():
+    # a flat 5 s grace called children hung that were only slow on a loaded machine
+    from layoutdsl.solve.isolated import CHILD_GRACE_SECONDS, child_grace
+
+    assert child_grace(0.5, 100) == pytest.approx(CHILD_GRACE_SECONDS + 0.125 + 0.02)
+    assert child_grace(40, 12_000) > child_grace(0.5, 12_000) > child_grace(0.5, 100) >= CHILD_GRACE_SECONDS
