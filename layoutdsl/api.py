@@ -15,6 +15,7 @@ from layoutdsl.syntax.ast import Spec
 from layoutdsl.check import check_spec
 from layoutdsl.diagnostics import Diagnostic, has_errors
 from layoutdsl.syntax.format import format_spec
+from layoutdsl.sizes.resolve import resolve_spec
 from layoutdsl.syntax.parser import parse_source
 from layoutdsl.diagnostics.source import Source
 
@@ -25,11 +26,16 @@ def lint_source(source: Source) -> tuple[Spec | None, list[Diagnostic]]:
     """Parse and check a source; the spec is None when it has syntax or value errors.
 
     Semantic checks run only on a spec that parsed cleanly, so a typo on one line does not
-    also appear as a cascade of "unknown room" errors elsewhere.
+    also appear as a cascade of "unknown room" errors elsewhere. Between the two, what the
+    spec leaves to the tool is filled in (layoutdsl.sizes.resolve): the sizes of sizeless
+    rooms and a boundary, each reported by an info diagnostic.
     """
     spec, diagnostics = parse_source(source)
     if spec is not None:
-        diagnostics = diagnostics + check_spec(spec)
+        spec, resolved = resolve_spec(spec)
+        diagnostics = diagnostics + resolved
+        if not has_errors(resolved):
+            diagnostics = diagnostics + check_spec(spec)
     diagnostics.sort(key=Diagnostic.sort_key)
     return spec, diagnostics
 

@@ -9,6 +9,7 @@ from layoutdsl.cli.output import Output, add_command, add_output_arguments, expa
 from layoutdsl.diagnostics import exitcodes, has_errors
 from layoutdsl.diagnostics.filekind import wrong_kind_for_spec
 from layoutdsl.emit.atomic import write_text_atomic
+from layoutdsl.sizes.resolve import resolve_spec
 from layoutdsl.syntax.format import format_source
 from layoutdsl.syntax.parser import parse_source
 
@@ -37,6 +38,11 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     mode.add_argument("--check", action="store_true", help="exit 1 if a file is not in canonical form")
     mode.add_argument("--write", action="store_true", help="rewrite files in place (atomically)")
     parser.add_argument("--stdin-filename", metavar="NAME", default=None, help="name for standard input")
+    parser.add_argument(
+        "--fill-sizes", action="store_true",
+        help="write the sizes the size model gives sizeless rooms (`R1 R CLASSROOM`) and the "
+        "boundary the tool chooses when there is none (docs/sizes.md)",
+    )  # fmt: skip
     add_output_arguments(parser, diagnostics=True)
     parser.set_defaults(run=run)
     return parser
@@ -65,7 +71,7 @@ def run(args: argparse.Namespace) -> int:
         if spec is None or has_errors(diagnostics):
             status = max(status, exitcodes.SPEC_ERRORS)
             continue
-        text = format_source(source)
+        text = format_source(source, resolve=resolve_spec if args.fill_sizes else None)
         (unchanged if text == source.text else changed).append(source.path)
         if args.check:
             if text != source.text:

@@ -89,6 +89,6 @@ def run(args: argparse.Namespace) -> int:
     if unreadable:
         code = exitcodes.USAGE
     else:
-        failing = [d for d in diagnostics if d.is_error or args.warnings_as_errors]
+        failing = [d for d in diagnostics if d.is_error or (args.warnings_as_errors and d.severity.value == "warning")]
         code = exitcodes.SPEC_ERRORS if failing else exitcodes.OK
     return out.finish(code, files=list(sources))

@@ -16,6 +16,10 @@ from layoutdsl.diagnostics.source import Span
 class Severity(str, Enum):
     ERROR = "error"
     WARNING = "warning"
+    INFO = "info"
+    """Not a problem: a note on what the tool decided for the spec (where a sizeless room's
+    sizes came from, the boundary it chose). Never fails a command, not even with
+    `--warnings-as-errors`."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -71,7 +75,8 @@ def has_errors(diagnostics: list[Diagnostic] | tuple[Diagnostic, ...]) -> bool:
     return any(d.is_error for d in diagnostics)
 
 
-CODE_MODULES = ("layoutdsl.syntax.parser", "layoutdsl.syntax.builder", "layoutdsl.check", "layoutdsl.importer", "layoutdsl.compile.explain", "layoutdsl.diagnostics.filekind")
+CODE_MODULES = ("layoutdsl.syntax.parser", "layoutdsl.syntax.builder", "layoutdsl.check", "layoutdsl.importer", "layoutdsl.compile.explain", "layoutdsl.diagnostics.filekind",
+                "layoutdsl.importer.graphs", "layoutdsl.sizes.resolve")
 """Modules that register codes at import time; `load_all_codes` imports them all."""
 
 

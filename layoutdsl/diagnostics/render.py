@@ -43,7 +43,7 @@ def _display(line: str, upto: int) -> tuple[str, int]:
     return "".join(shown), prefix_width
 
 
-_ANSI = {"error": "1;31", "warning": "1;33", "gutter": "1;34", "help": "1;36", "bold": "1"}
+_ANSI = {"error": "1;31", "warning": "1;33", "info": "1;32", "gutter": "1;34", "help": "1;36", "bold": "1"}
 
 
 def _paint(text: str, style: str, colour: bool) -> str:
@@ -115,9 +115,10 @@ def summary(diagnostics: Iterable[Diagnostic]) -> str:
     """`found 2 errors and 1 warning`, or `no problems found`."""
     items = list(diagnostics)
     errors = sum(1 for d in items if d.is_error)
-    warnings = len(items) - errors
-    if not items:
-        return "no problems found"
+    notes = sum(1 for d in items if d.severity.value == "info")  # not problems: counted apart
+    warnings = len(items) - errors - notes
+    if not errors and not warnings:
+        return "no problems found" + (f" ({notes} note{'s' if notes != 1 else ''})" if notes else "")
     parts = []
     if errors:
         parts.append(f"{errors} error{'s' if errors != 1 else ''}")

@@ -172,13 +172,15 @@ def _read_csv(text: str, filename: str):
     values: list[list[int]] = []
     for line, cells in rows:
         if len(cells) != size:
-            last_text, last_col = cells[-1]
-            at = cells[size] if len(cells) > size else (last_text, last_col)
-            col = at[1]
+            if len(cells) > size:  # point at the first extra cell
+                col, width = cells[size][1], max(1, len(cells[size][0].strip()))
+            else:  # point just after the row's last cell
+                last_text, last_col = cells[-1]
+                col, width = last_col + len(last_text.strip()), 1
             diagnostics.append(_error(
                 GRAPH_NOT_SQUARE, f"row has {len(cells)} cells, but the matrix has {size} rows", filename,
-                Span(line, col, line, col + max(1, len(at[0].strip()))),
-                "extra cell" if len(cells) > size else "row ends here",
+                Span(line, col, line, col + width),
+                "extra cell" if len(cells) > size else f"row ends after {len(cells)} cells",
                 help="an adjacency matrix has one row and one column per room",
             ))  # fmt: skip
             continue
@@ -379,11 +381,15 @@ def _check_structure(graph: nx.Graph, filename: str, locate) -> list[Diagnostic]
             filename, locate(rooms[0]), "not planar",
             help="a floor's rooms form a planar graph; remove one of these doors",
             notes=("doors of the subgraph: " + ", ".join(
-                f"{_name(graph, a)}-{_name(graph, b)}" for a, b in sorted(
+                f"{_short(a)}-{_short(b)}" for a, b in sorted(
                     (tuple(sorted(e, key=order.__getitem__)) for e in certificate.edges),
                     key=lambda e: (order[e[0]], order[e[1]]))),),
         ))  # fmt: skip
     return diagnostics
+
+
+def _short(node) -> str:
+    return str(node + 1) if isinstance(node, int) else str(node)
 
 
 def _name(graph: nx.Graph, node) -> str:

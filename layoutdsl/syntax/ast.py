@@ -8,6 +8,7 @@ compares content only.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from types import MappingProxyType
@@ -23,6 +24,13 @@ ROOM_TYPES = tuple(ROOM_TYPE_NAMES)
 
 EMPHASES = ("default", "heuristics", "feasibility", "optimality", "easycip")
 """Values of the `emphasis` setting (and `--emphasis`): SCIP's emphasis meta settings."""
+
+SIZES_PENDING = ""
+"""`Room.sizes_from` of a sizeless room line before the size model has sized it."""
+
+NO_SIZE = math.nan
+"""The eight numbers of a sizeless room before it is sized (one object, so two parses of the
+same sizeless line compare equal: tuple comparison tries identity first)."""
 
 ADJACENCY_TYPES = ("e", "i")
 """e explicit portal (a door), i implicit portal (an opening with no barrier)."""
@@ -54,10 +62,25 @@ class Room:
     span: Span | None = field(default=None, compare=False)
     spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
     """Span of each field by name (`min_w`, `label`, ...), for pointed diagnostics."""
+    sizes_from: str | None = field(default=None, compare=False)
+    """None: the spec gives the eight numbers. Otherwise the line is sizeless (`R1 R
+    CLASSROOM`): SIZES_PENDING until the size model sizes it (layoutdsl.sizes.resolve),
+    then which group of the model the sizes came from. `rtype` is "" while pending if the
+    line gave no type."""
 
     @property
     def is_corridor(self) -> bool:
         return self.rtype == "C"
+
+    @property
+    def sizeless(self) -> bool:
+        """Does the spec leave this room's sizes to the size model?"""
+        return self.sizes_from is not None
+
+    @property
+    def has_sizes(self) -> bool:
+        """Are the eight numbers known (given, or filled in by the size model)?"""
+        return not math.isnan(self.min_w)
 
 
 @dataclass(frozen=True, slots=True)
@@ -135,6 +158,9 @@ class Boundary:
     obstacles: tuple[Obstacle, ...] = ()
     span: Span | None = field(default=None, compare=False)
     spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
+    chosen: bool = field(default=False, compare=False)
+    """True when the spec gave no boundary and the tool chose this one
+    (layoutdsl.sizes.boundary.choose_boundary): compile may then grow it."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -243,6 +269,8 @@ class Settings:
     """SCIP emphasis: default, heuristics, feasibility, optimality, easycip."""
     node_limit: int | None = None
     """Stop after this many branch-and-bound nodes: a deterministic stopping rule."""
+    kind: str = "school"
+    """The building kind whose room sizes a sizeless room line gets (layoutdsl.sizes)."""
     explicit: frozenset[str] = field(default=frozenset(), compare=False)
     span: Span | None = field(default=None, compare=False)
     spans: Mapping[str, Span] = field(default_factory=lambda: _NO_SPANS, compare=False)
@@ -250,7 +278,7 @@ class Settings:
 
 SETTING_KEYS = (
     "name", "lambda_cover", "lambda_error", "walldim", "door_utilization", "cluster_margin",
-    "time_limit", "gap", "seed", "emphasis", "node_limit",
+    "time_limit", "gap", "seed", "emphasis", "node_limit", "kind",
 )  # fmt: skip
 """Keys of the `settings` section, in the order the formatter writes them: `name` (the
 Spec's name), then the Settings fields."""

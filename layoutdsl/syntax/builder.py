@@ -22,7 +22,9 @@ from lark import Token, Transformer
 from layoutdsl.syntax.ast import (
     ADJACENCY_TYPES,
     EMPHASES,
+    NO_SIZE,
     ROOM_TYPES,
+    SIZES_PENDING,
     SETTING_KEYS,
     Adjacency,
     Arm,
@@ -41,6 +43,12 @@ from layoutdsl.diagnostics import Diagnostic, Severity, register
 from layoutdsl.diagnostics.source import Span
 
 E_NUMBER_RANGE = "E008"  # registered in parser.py, where numbers are first met
+E_EXPECTED_NUMBER = "E005"  # registered in parser.py too
+
+_SIZE_FIELDS = ("minw", "maxw", "targetw", "minh", "maxh", "targeth", "minar", "maxar")
+_NUMBERS_OF_A_BROKEN_SIZED_LINE = 4
+"""A sizeless room line with this many numbers among its words is a sized line with a typo
+in its first number (`R0 4,6 8 6 6 10 8 1 1.7 R CLASSROOM`), not a label."""
 
 E_BAD_WEIGHT = register(
     "E009", Severity.ERROR, "invalid room weight",
@@ -88,8 +96,10 @@ E_BOUNDARY_SIZE_TWICE = register(
 )  # fmt: skip
 E_NO_BOUNDARY = register(
     "E016", Severity.ERROR, "missing boundary",
-    "Reports a spec without a `boundary` section, or a `boundary` section without its `w h` line.",
-    "Rooms are placed inside the boundary; without it the problem is not defined (the thesis, §5.4).",
+    "Reports a `boundary` section without its `w h` line. (A spec may leave the whole section "
+    "out: the tool then chooses the boundary, docs/sizes.md.)",
+    "The obstacles of the section are placed in the boundary's frame; without its size they "
+    "have none (the thesis, §5.4).",
     "boundary\nO1 2 2 1 1     # obstacle but no size line",
 )  # fmt: skip
 E_NO_ROOMS = register(
@@ -212,6 +222,50 @@ class LineBuilder(Transformer):
     def weight(self, children: list[Token]) -> _Word:
         return self._word(children[0])
 
+    def sizeless_label(self, children: list[Token]) -> list[tuple[_Word, bool]]:
+        return [(self._word(t), t.type == "NUMBER") for t in children]
+
+    def sizeless_room_line(self, children: list[Any]) -> Room:
+        """`id [rtype] label... [onB] [weights]`: a room whose sizes the size model gives."""
+        rid = self._word(children[0])
+        tagged: list[tuple[_Word, bool]] = children[1]
+        weights: list[_Word] = children[2:]
+        numbers = sum(1 for _, is_number in tagged if is_number)
+        first = tagged[0][0]
+        if numbers >= _NUMBERS_OF_A_BROKEN_SIZED_LINE or re.match(r"[+\-.\d]", first.value):
+            # the eight sizes with a typo, not a label: say which number is wrong
+            index = next((i for i, (_, is_number) in enumerate(tagged) if not is_number), 0)
+            word = tagged[index][0]
+            field_name = _SIZE_FIELDS[index] if index < len(_SIZE_FIELDS) else "rtype"
+            hint = "a room line is `id minw maxw targetw minh maxh targeth minar maxar rtype label`, or `id [rtype] label` for sizes from the model"
+            if re.fullmatch(r"[+-]?\d+,\d+", word.value):
+                hint = f"use `.` as the decimal separator: `{word.value.replace(',', '.')}`"
+            if field_name == "rtype":
+                self._error("E012", f"unknown room type `{word.value}`", word.span, label="expected R, C or E",
+                            help="use R (room), C (corridor) or E (entrance)")  # fmt: skip
+            else:
+                self._error(E_EXPECTED_NUMBER, f"expected a number for `{field_name}`, found `{word.value}`",
+                            word.span, label="not a number", help=hint)  # fmt: skip
+        words = [word for word, _ in tagged]
+        spans: dict[str, Span] = {"id": rid.span}
+        on_boundary = False
+        if len(words) > 1 and words[-1].value == "onB":
+            on_boundary, spans["on_boundary"] = True, words[-1].span
+            words = words[:-1]
+        rtype = ""
+        if words[0].value in ROOM_TYPES:
+            rtype, spans["rtype"] = words[0].value, words[0].span
+            words = words[1:]
+        label = " ".join(w.value for w in words) or {"R": "ROOM", "C": "CORRIDOR", "E": "ENTRANCE"}[rtype]
+        if words:
+            spans["label"] = self._line_span(words[0].span, words[-1].span)
+        rho = self._weights(weights, spans)
+        last = weights[-1].span if weights else spans.get("on_boundary") or (words[-1].span if words else spans.get("rtype", rid.span))
+        return Room(
+            rid.value, *(NO_SIZE,) * 8, rtype, label, on_boundary, rho["rho_cover"], rho["rho_error"],
+            span=self._line_span(rid.span, last), spans=MappingProxyType(spans), sizes_from=SIZES_PENDING,
+        )  # fmt: skip
+
     def room_line(self, children: list[Any]) -> Room:
         rid = self._word(children[0])
         nums: list[_Num] = children[1:9]
@@ -238,6 +292,16 @@ class LineBuilder(Transformer):
         spans.update({name: num.span for name, num in zip(names, nums)})
         if onb_span:
             spans["on_boundary"] = onb_span
+        rho = self._weights(weights, spans)
+        return Room(
+            rid.value, *(n.value for n in nums), rtype.value, label, on_boundary,
+            rho["rho_cover"], rho["rho_error"],
+            span=self._line_span(rid.span, (weights[-1].span if weights else (onb_span or words[-1].span))),
+            spans=MappingProxyType(spans),
+        )  # fmt: skip
+
+    def _weights(self, weights: list[_Word], spans: dict[str, Span]) -> dict[str, float]:
+        """The `cover=W error=W` tokens of a room line (bad ones reported), their spans into `spans`."""
         rho = {"rho_cover": 1.0, "rho_error": 1.0}
         seen: set[str] = set()
         for weight in weights:
@@ -262,12 +326,7 @@ class LineBuilder(Transformer):
                 continue
             rho[field_name] = value
             spans[field_name] = weight.span
-        return Room(
-            rid.value, *(n.value for n in nums), rtype.value, label, on_boundary,
-            rho["rho_cover"], rho["rho_error"],
-            span=self._line_span(rid.span, (weights[-1].span if weights else (onb_span or words[-1].span))),
-            spans=MappingProxyType(spans),
-        )  # fmt: skip
+        return rho
 
     def arm_line(self, children: list[Any]) -> Arm:
         room = self._word(children[0])
@@ -366,6 +425,10 @@ def _setting_value(key: str, text: str) -> tuple[Any, str | None]:
         if re.fullmatch(r"[A-Za-z0-9_][A-Za-z0-9_.\-]*", text):
             return text, None
         return None, "must be a plain file name (letters, digits, `_`, `-`, `.`)"
+    if key == "kind":
+        if re.fullmatch(r"[A-Za-z][A-Za-z0-9_\-]*", text):
+            return text, None
+        return None, "must be a building kind such as `school` or `office`"
     if key == "emphasis":
         if text in EMPHASES:
             return text, None
@@ -511,13 +574,10 @@ def _missing_sections(found: _Sections, header_spans: dict[str, Span], path: str
     """E016 (no boundary size) and E017 (no rooms), located at the section's header if any."""
     diagnostics = []
     if found.size is None:
+        # No `boundary` section at all: the tool chooses one (layoutdsl.sizes.boundary).
+        # A section without its size line is still an error: its obstacles need a frame.
         span = header_spans.get("boundary")
-        if span is None:
-            diagnostics.append(Diagnostic(
-                E_NO_BOUNDARY, "spec has no `boundary` section", path, Span(1, 1, 1, 2),
-                label="boundary expected", help="add a section `boundary` with a `w h` line (metres)",
-            ))  # fmt: skip
-        else:
+        if span is not None:
             diagnostics.append(Diagnostic(
                 E_NO_BOUNDARY, "`boundary` section has no size line", path, span,
                 label="no `w h` line", help="add a line `w h` (metres) under `boundary`",

@@ -95,8 +95,14 @@ def _line(node) -> int | None:
     return node.span.line if node.span is not None else None
 
 
-def format_lines(spec: Spec, header_lines: Mapping[str, int] | None = None) -> list[tuple[str, int | None]]:
-    """The canonical lines, each with the source line it came from (None for new lines)."""
+def format_lines(
+    spec: Spec, header_lines: Mapping[str, int] | None = None, *, fill_sizes: bool = False
+) -> list[tuple[str, int | None]]:
+    """The canonical lines, each with the source line it came from (None for new lines).
+
+    A sizeless room (`R1 R CLASSROOM`) stays sizeless and a boundary the tool chose is left
+    out, unless `fill_sizes`: then both are written with the numbers the size model gave
+    (the spec must have been through layoutdsl.sizes.resolve)."""
     n = format_number
     headers = header_lines or {}
     sections: list[list[tuple[str, int | None]]] = []
@@ -108,7 +114,11 @@ def format_lines(spec: Spec, header_lines: Mapping[str, int] | None = None) -> l
     for room in spec.rooms:
         values = (room.min_w, room.max_w, room.target_w, room.min_h, room.max_h, room.target_h,
                   room.min_ar, room.max_ar)  # fmt: skip
-        parts = [room.id, *(n(v) for v in values), room.rtype, safe_label(room.label)]
+        if room.sizeless and not (fill_sizes and room.has_sizes):
+            # sizes from the size model: `id [rtype] label`, the type once it is known
+            parts = [room.id, *([room.rtype] if room.rtype else []), safe_label(room.label)]
+        else:
+            parts = [room.id, *(n(v) for v in values), room.rtype, safe_label(room.label)]
         if room.on_boundary:
             parts.append("onB")
         if room.rho_cover != 1.0:
@@ -126,7 +136,7 @@ def format_lines(spec: Spec, header_lines: Mapping[str, int] | None = None) -> l
         ])  # fmt: skip
 
     boundary = spec.boundary
-    if boundary is not None:
+    if boundary is not None and (fill_sizes or not boundary.chosen):
         lines = [header("boundary"), (f"{n(boundary.w)} {n(boundary.h)}", _line(boundary))]
         lines += [(f"{o.id} {n(o.x)} {n(o.y)} {n(o.w)} {n(o.h)}", _line(o)) for o in boundary.obstacles]
         sections.append(lines)
@@ -165,12 +175,13 @@ def format_lines(spec: Spec, header_lines: Mapping[str, int] | None = None) -> l
     return out
 
 
-def format_spec(spec: Spec) -> str:
-    """The canonical text of a spec (ends with one newline); comments are not part of a Spec."""
-    return "\n".join(text for text, _ in format_lines(spec)) + "\n"
+def format_spec(spec: Spec, *, fill_sizes: bool = False) -> str:
+    """The canonical text of a spec (ends with one newline); comments are not part of a Spec.
+    `fill_sizes`: see format_lines."""
+    return "\n".join(text for text, _ in format_lines(spec, fill_sizes=fill_sizes)) + "\n"
 
 
-def format_source(source: Source) -> str | None:
+def format_source(source: Source, *, resolve=None) -> str | None:
     """The canonical text of a source, keeping its comments; None if it has errors.
 
     The comment block that opens the file (followed by a blank line) stays at the top; any
@@ -183,6 +194,10 @@ def format_source(source: Source) -> str | None:
     spec, diagnostics = parse_source(source)
     if spec is None or any(d.is_error for d in diagnostics):
         return None
+    if resolve is not None:  # `fmt --fill-sizes`: the sizes and boundary the model gives
+        spec, resolved = resolve(spec)
+        if any(d.is_error for d in resolved):
+            return None
     headers, _, _ = split_sections(source)
     header_lines: dict[str, int] = {}
     for h in headers:
@@ -209,7 +224,7 @@ def format_source(source: Source) -> str | None:
         if column is not None:
             trailing[line_no] = raw[column - 1 :].rstrip()
     out: list[str] = [*file_header, ""] if file_header else []
-    for text, origin in format_lines(spec, header_lines):
+    for text, origin in format_lines(spec, header_lines, fill_sizes=resolve is not None):
         if origin is not None and origin in leading:
             out += leading.pop(origin)
         if origin is not None and origin in trailing:

@@ -69,8 +69,7 @@ LINE_SHAPES: dict[str, tuple[tuple[str, str], ...]] = {
 }
 
 LINE_SYNOPSIS = {
-    "room_line": "id minw maxw targetw minh maxh targeth minar maxar rtype label [onB] [cover=W] [error=W]` "
-                 "(or `id [rtype] label [onB]` for sizes from the size model",
+    "room_line": "id minw maxw targetw minh maxh targeth minar maxar rtype label [onB] [cover=W] [error=W]",
     "arm_line": "id minw maxw targetw minh maxh targeth minar maxar",
     "boundary_size": "w h",
     "obstacle": "id x y w h",

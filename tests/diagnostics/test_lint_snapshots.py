@@ -52,9 +52,9 @@ def test_named_codes_appear_in_their_snapshot(monkeypatch, capsys) -> None:
 def rendered_codes(text: str) -> set[str]:
     """Codes shown as diagnostics in a snapshot (full, concise or JSON rendering), not codes
     merely mentioned, say in a comment of the spec echoed in a source excerpt."""
-    full = re.findall(r"^(?:error|warning)\[([EW]\d{3})\]", text, re.M)
-    concise = re.findall(r"^\S+:\d+:\d+: ([EW]\d{3}) ", text, re.M)
-    json = re.findall(r'"code": "([EW]\d{3})"', text)
+    full = re.findall(r"^(?:error|warning|info)\[([EWI]\d{3})\]", text, re.M)
+    concise = re.findall(r"^\S+:\d+:\d+: ([EWI]\d{3}) ", text, re.M)
+    json = re.findall(r'"code": "([EWI]\d{3})"', text)
     return {*full, *concise, *json}
 
 
