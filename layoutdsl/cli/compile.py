@@ -56,7 +56,7 @@ def add_parser(subparsers) -> None:
                         help="stop after N improving solutions: a deterministic stopping rule")
     parser.add_argument("--emit", default="xml,png,world,map", metavar="FORMATS",
                         help="comma-separated output formats: xml, png, world, map (the default "
-                        "set), and the 3D worlds mjcf (MuJoCo), sdf (Gazebo), gltf (mesh; needs "
+                        "set), svg (the drawing as vectors), and the 3D worlds mjcf (MuJoCo), sdf (Gazebo), gltf (mesh; needs "
                         "pip install 'layoutdsl[sim]')")
     parser.add_argument("--robot-room", metavar="ID", help="room the simulated robot starts in")
     parser.add_argument("--wall-height", type=positive_float, default=2.5, metavar="M",

@@ -39,6 +39,7 @@ LAYERS: tuple[str, ...] = (
     "compile",
     "evaluate",
     "api",
+    "lsp",
     "batch",
     "cli",
     "__main__",

@@ -6,6 +6,7 @@ Each emitter reads only a `Layout` (never Pyomo objects) and writes its files at
 |---------|-----------------------------------------|----------------------|
 | `xml`   | `STEM.xml` (building XML, the thesis, §5.2)    | `layoutdsl.emit.xml` |
 | `png`   | `STEM.png` (drawing, the thesis, §5.6)         | `layoutdsl.emit.png` |
+| `svg`   | `STEM.svg` (the same drawing as vectors, rooms' tooltips) | `layoutdsl.emit.svg` |
 | `world` | `STEM.world` + its bitmap `STEM.world.png` (Stage) | `layoutdsl.emit.stage` |
 | `map`   | `STEM.pgm` + `STEM.yaml` (ROS map_server) | `layoutdsl.emit.rosmap` |
 | `mjcf`  | `STEM.mjcf.xml` (MuJoCo scene, robot with a laser ring) | `layoutdsl.emit.mjcf` |
@@ -33,8 +34,10 @@ from layoutdsl.emit.raster import DEFAULT_RESOLUTION
 from layoutdsl.emit.walls import DEFAULT_WALL_HEIGHT
 
 DEFAULT_FORMATS = ("xml", "png", "world", "map")
+DRAWING_FORMATS = ("svg",)
+"""2D outputs written only when asked for: the PNG's drawing as vectors."""
 WORLD_3D_FORMATS = ("mjcf", "sdf", "gltf")
-FORMATS = DEFAULT_FORMATS + WORLD_3D_FORMATS
+FORMATS = DEFAULT_FORMATS + DRAWING_FORMATS + WORLD_3D_FORMATS
 
 MAX_WALL_HEIGHT = 100.0
 """Tallest wall accepted, metres: anything taller is a typo, not a building."""
@@ -53,11 +56,12 @@ Emitter = Callable[..., list[Path]]
 
 def _renderers() -> dict[str, Renderer]:
     # Imported lazily so that importing layoutdsl.emit stays cheap.
-    from layoutdsl.emit import gltf, mjcf, png, rosmap, sdf, stage, xml
+    from layoutdsl.emit import gltf, mjcf, png, rosmap, sdf, stage, svg, xml
 
     return {
         "xml": xml.render,
         "png": png.render,
+        "svg": svg.render,
         "world": stage.render,
         "map": rosmap.render,
         "mjcf": mjcf.render,
@@ -199,6 +203,7 @@ def write_outputs(
 
 __all__ = [
     "DEFAULT_FORMATS",
+    "DRAWING_FORMATS",
     "EMITTERS",
     "FORMATS",
     "WORLD_3D_FORMATS",

@@ -33,6 +33,7 @@ def test_each_emitter_writes_only_its_own_files(tmp_path: Path) -> None:
     assert written == {
         "xml": ["plan.xml"],
         "png": ["plan.png"],
+        "svg": ["plan.svg"],
         "world": ["plan.world", "plan.world.png"],
         "map": ["plan.pgm", "plan.yaml"],
         "mjcf": ["plan.mjcf.xml"],
@@ -101,7 +102,7 @@ def test_write_set_rejects_a_path_given_twice(tmp_path: Path) -> None:
 
 
 def test_emit_module_exports_the_interface() -> None:
-    assert set(EMITTERS) == {"xml", "png", "world", "map", "mjcf", "sdf", "gltf"}
+    assert set(EMITTERS) == {"xml", "png", "svg", "world", "map", "mjcf", "sdf", "gltf"}
     assert emit.DEFAULT_FORMATS == ("xml", "png", "world", "map")
     assert callable(emit.write_outputs) and issubclass(EmitError, ValueError)
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+from dataclasses import replace
 from pathlib import Path
 
 import pytest
@@ -85,9 +86,11 @@ def test_legend_and_scale_bar() -> None:
     picture = drawing(layout)
     words = {t.text for t in _texts(picture)}
     assert {"room", "corridor", "entrance", "door (explicit portal)", "implicit portal", "obstacle"} <= words
-    (caption,) = [t for t in _texts(picture) if t.text.endswith(" m")]
+    legend = [t for t in _texts(picture) if t.tag == "legend"]
+    assert "robot start (Stage, MuJoCo)" in {t.text for t in legend}
+    (caption,) = [t for t in legend if t.text.endswith(" m")]
     metres = float(caption.text[:-2])
-    (zero,) = [t for t in _texts(picture) if t.text == "0"]
+    (zero,) = [t for t in legend if t.text == "0"]
     assert caption.x - zero.x == pytest.approx(metres * picture.px_per_m)
 
 
@@ -127,3 +130,124 @@ def test_a_tall_narrow_corridor_gets_its_label_turned() -> None:
     _assert_labels_fit(layout, picture, require_label=True)
     image = Image.open(io.BytesIO(render_png(picture)))
     assert image.size == (picture.width, picture.height)
+
+
+# ----------------------------------------------------------------------------- issue 42's additions
+
+
+def _metres_to_px(picture: png.Drawing, layout: Layout) -> tuple:
+    """The drawing's metre -> pixel map, recovered from room rectangles alone (independent of
+    the code under test): x_px = ax + s x, y_px = ay - s y."""
+    room = layout.rooms[0]
+    (box,) = _tagged(picture, f"room {room.id}")
+    s = picture.px_per_m
+    return box.x0 - s * room.x, box.y1 + s * room.y, s
+
+
+def test_every_room_shows_its_area() -> None:
+    layout = load_case(SMALL)
+    picture = drawing(layout)
+    for room in layout.rooms:
+        (area,) = _tagged(picture, f"area {room.id}")
+        assert area.text == f"{room.w * room.h:.1f} m²"
+        # below the label, inside the room
+        assert area.y > max(t.y for t in _tagged(picture, f"label {room.id}"))
+        (box,) = _tagged(picture, f"room {room.id}")
+        assert box.x0 < area.x < box.x1 and box.y0 < area.y < box.y1
+    assert _tagged(picture, "area R1")[0].text == "8.8 m²"  # 4.9 m × 1.8 m
+
+
+def test_the_area_of_an_l_room_counts_both_rectangles() -> None:
+    layout = school_layout(1, 2)
+    room = layout.rooms[1]
+    l_room = replace(room, arm=(room.x, room.y2 + 0.2, room.w / 2, 1.0))
+    assert png.area_text(l_room) == f"{room.w * room.h + room.w / 2:.1f} m²"
+
+
+def test_coordinate_ticks_read_in_the_boundary_frame() -> None:
+    layout = load_case(SMALL)
+    picture = drawing(layout)
+    ax, ay, s = _metres_to_px(picture, layout)
+    x_ticks = [t for t in _tagged(picture, "axis x") if isinstance(t, Text) and t.text != "x (m)"]
+    y_ticks = [t for t in _tagged(picture, "axis y") if isinstance(t, Text) and t.text != "y (m)"]
+    assert [t.text for t in x_ticks] == [str(v) for v in range(0, 13)]  # the 12 m boundary, every metre
+    assert [t.text for t in y_ticks] == [str(v) for v in range(0, 7)]
+    for t in x_ticks:
+        assert t.x == pytest.approx(ax + s * float(t.text), abs=0.01)
+    for t in y_ticks:
+        assert t.y == pytest.approx(ay - s * float(t.text), abs=0.01)
+    # the ticks sit outside the plan: under it and left of it
+    walls = [i for i in picture.items if isinstance(i, Rect) and i.tag.startswith("wall ")]
+    assert min(t.y for t in x_ticks) > max(w.y1 for w in walls)
+    assert max(t.x for t in y_ticks) < min(w.x0 for w in walls)
+
+
+def test_ticks_stay_readable_on_a_large_plan() -> None:
+    layout = school_layout()
+    picture = drawing(layout)
+    values = [float(t.text) for t in _tagged(picture, "axis x") if isinstance(t, Text) and t.text != "x (m)"]
+    step = values[1] - values[0]
+    assert step * picture.px_per_m >= png.TICK_SPACING_PX and step in (1, 2, 5, 10, 20, 50)
+    assert values[0] <= 0 and values[-1] >= layout.width - step
+
+
+def test_the_robot_starts_where_stage_and_mujoco_put_it() -> None:
+    layout = load_case(SMALL)
+    ax, ay, s = _metres_to_px(drawing(layout), layout)
+    # by default: the first entrance, at the centre of its rectangle, heading along +x
+    entrance = next(room for room in layout.rooms if room.rtype == "E")
+    for robot_room, room in ((None, entrance), ("R2", layout.room("R2"))):
+        picture = drawing(layout, robot_room=robot_room)
+        (disc,) = [i for i in picture.items if isinstance(i, png.Circle) and i.tag.startswith("robot")]
+        assert disc.tag == f"robot {room.id}"
+        assert (disc.x, disc.y) == pytest.approx((ax + s * (room.x + room.w / 2), ay - s * (room.y + room.h / 2)))
+        (arrow,) = [i for i in picture.items if isinstance(i, png.Polygon) and i.tag == disc.tag]
+        tip = max(arrow.points)
+        assert tip[1] == pytest.approx(disc.y) and tip[0] > disc.x + disc.r  # points along +x
+        # the room's id stays readable: no text of the room under the disc
+        for text in _tagged(picture, f"label {room.id}") + _tagged(picture, f"area {room.id}"):
+            assert text.y + text.size / 2 <= disc.y - disc.r or text.y - text.size / 2 >= disc.y + disc.r
+
+
+def test_the_robot_pose_matches_the_stage_world() -> None:
+    from layoutdsl.emit import stage
+    from layoutdsl.emit.raster import rasterize_layout
+
+    layout = load_case(SMALL)
+    world = stage.world_model(layout, rasterize_layout(layout), "x", "R1")
+    picture = drawing(layout, robot_room="R1")
+    ax, ay, s = _metres_to_px(picture, layout)
+    (disc,) = [i for i in picture.items if isinstance(i, png.Circle) and i.tag == "robot R1"]
+    assert ((disc.x - ax) / s, (ay - disc.y) / s) == pytest.approx(world.robot_pose[:2])
+    assert world.robot_pose[3] == 0  # yaw 0: the arrow's +x
+
+
+def test_the_seed_and_status_are_printed() -> None:
+    solved = load_case(Path(__file__).parent / "single_room")
+    assert solved.solve is not None
+    (status,) = _tagged(drawing(solved), "status")
+    assert status.text == f"seed {solved.solve.seed} · status {solved.solve.status}" == "seed 3 · status optimal"
+    (unknown,) = _tagged(drawing(load_case(SMALL)), "status")
+    assert "unknown" in unknown.text
+
+
+def test_the_png_emitter_draws_the_robot_room_it_is_given(tmp_path: Path) -> None:
+    from layoutdsl.emit import render_outputs
+
+    layout = load_case(SMALL)
+    files = render_outputs(layout, "office", ["png"], robot_room="R2")
+    assert files["office.png"] == render_png(drawing(layout, robot_room="R2"))
+    assert files["office.png"] != render_png(drawing(layout))
+
+
+def test_the_area_unit_is_painted_as_a_raised_two() -> None:
+    # Pillow's default font has no `²`: the renderer draws a small raised `2` instead of a box
+    from PIL import ImageChops
+
+    picture = png.Drawing(200, 60, "#ffffff", 20.0, (Text(100, 30, "8.8 m²", 24),))
+    painted = Image.open(io.BytesIO(render_png(picture))).convert("L")
+    plain = Image.open(io.BytesIO(render_png(replace(picture, items=(Text(100, 30, "8.8 m2", 24),))))).convert("L")
+    assert ImageChops.difference(painted, plain).getbbox() is not None
+    dark_rows = [y for y in range(60) if any(painted.getpixel((x, y)) < 128 for x in range(130, 200))]
+    digits_rows = [y for y in range(60) if any(painted.getpixel((x, y)) < 128 for x in range(60, 100))]
+    assert min(dark_rows) < min(digits_rows)  # the `2` is raised above the digits' top
