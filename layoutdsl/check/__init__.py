@@ -10,6 +10,8 @@ door / door_utilization long (5.9).
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from layoutdsl.check.geometry import (
     check_boundary,
     check_doors,
@@ -45,11 +47,20 @@ CHECKS = (
 """Every check, in order. Each is pure: Spec -> iterator of Diagnostic."""
 
 
+SIZE_CHECKS = frozenset((check_arms, check_room_sizes, check_boundary, check_fit, check_doors, check_points,
+                         check_shared_points))  # fmt: skip
+"""The checks that read rooms' sizes: a sizeless room the size model has not sized yet
+(a spec straight from parse_source, not through api.lint_source) is left out of them."""
+
+
 def check_spec(spec: Spec) -> list[Diagnostic]:
     """Run every check and return all diagnostics sorted by position."""
     diagnostics: list[Diagnostic] = []
+    sized = spec
+    if not all(room.has_sizes for room in spec.rooms):
+        sized = replace(spec, rooms=tuple(room for room in spec.rooms if room.has_sizes))
     for check in CHECKS:
-        diagnostics.extend(check(spec))
+        diagnostics.extend(check(sized if check in SIZE_CHECKS else spec))
     diagnostics = without_follow_ons(diagnostics)  # no W301 beside the E102 that causes it
     diagnostics.sort(key=Diagnostic.sort_key)
     return diagnostics

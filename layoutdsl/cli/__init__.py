@@ -26,6 +26,7 @@ COMMANDS = {
     "batch": ("batch", "make many verified buildings from specs and plans, resumably"),
     "sample": ("sample", "write specs of new buildings learned from real plans"),
     "explain": ("explain", "print what a diagnostic code means"),
+    "sizes": ("sizes", "fit or show the room-size model learned from real plans"),
     "lsp": ("lsp", "run the language server for editors (stdio)"),
 }
 

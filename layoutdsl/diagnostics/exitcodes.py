@@ -31,17 +31,18 @@ BY_COMMAND: dict[str, tuple[int, ...]] = {
     "fmt": (OK, SPEC_ERRORS, USAGE),
     "import": (OK, SPEC_ERRORS, USAGE),
     "evaluate": (OK, SPEC_ERRORS, USAGE),
-    "batch": (OK, SPEC_ERRORS, USAGE, NO_LAYOUT),
+    "batch": (OK, USAGE, NO_LAYOUT),
     "sample": (OK, SPEC_ERRORS, USAGE),
     "explain": (OK, USAGE),
+    "sizes": (OK, USAGE),
+    "sizes": (OK, USAGE),
     "lsp": (OK, USAGE),
 }
 """The codes each command can return (its `--help` lists exactly these)."""
 
 COMMAND_NOTES: dict[str, dict[int, str]] = {
     "fmt": {SPEC_ERRORS: "a spec has errors, or --check found a file to reformat"},
-    "batch": {SPEC_ERRORS: "an input spec or plan has errors",
-              NO_LAYOUT: "at least one building failed (see the manifest)"},
+    "batch": {NO_LAYOUT: "at least one building failed, say a spec with errors (see the manifest)"},
     "evaluate": {SPEC_ERRORS: "a plan has errors (diagnostics printed)"},
 }
 """Where a command gives a code a more precise meaning than MEANINGS."""
