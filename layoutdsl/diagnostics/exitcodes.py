@@ -35,7 +35,6 @@ BY_COMMAND: dict[str, tuple[int, ...]] = {
     "sample": (OK, SPEC_ERRORS, USAGE),
     "explain": (OK, USAGE),
     "sizes": (OK, USAGE),
-    "sizes": (OK, USAGE),
     "lsp": (OK, USAGE),
 }
 """The codes each command can return (its `--help` lists exactly these)."""
