@@ -40,6 +40,7 @@ LAYERS: tuple[str, ...] = (
     "evaluate",
     "api",
     "lsp",
+    "editor",
     "batch",
     "cli",
     "__main__",
