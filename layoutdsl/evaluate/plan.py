@@ -10,6 +10,7 @@ from dataclasses import dataclass, field, replace
 
 import networkx as nx
 import numpy as np
+from scipy import ndimage
 
 from layoutdsl.importer.building import Building
 from layoutdsl.evaluate.explore import ExploreSettings, ExplorationResult, explore
@@ -20,6 +21,7 @@ from layoutdsl.evaluate.paths import DistanceGrid, shortest_path
 from layoutdsl.evaluate.portals import MapCheck, realise_portal_graph
 from layoutdsl.evaluate.topology import room_graph, room_ids, sorted_rooms
 from layoutdsl.emit.raster import rasterize_building
+from layoutdsl.layout.realism import Realism, Space, measure_spaces
 
 
 @dataclass(frozen=True, slots=True)
@@ -81,6 +83,71 @@ class PlanMeasures:
     """Room centres under report ids, for the arrangement difference (evaluate.difference)."""
     shapes: dict[str, tuple[float, float]] = field(default_factory=dict)
     """Room -> (polygon area m², polygon / bounding-box area): the rooms' real shapes."""
+    unreachable: dict[str, str] = field(default_factory=dict)
+    """Every room the robot cannot reach from the exploration's start room -> why, in words."""
+    path_notes: dict[tuple[str, str], str] = field(default_factory=dict)
+    """Entrance pair without a path -> why."""
+    realism: Realism | None = None
+    """Entrances open to the outside, enclosed voids, rooms with an outside wall (layout.realism)."""
+
+
+class Reach:
+    """Which rooms the robot can reach from which, on the map inflated by its radius, and why not.
+
+    A room is out of reach either because no spot in it is a robot's radius from every wall
+    (the room, or its narrowest part, is smaller than the robot), or because on every way to
+    it through the plan's doors one opening is too narrow for the robot to pass; the reason
+    names the first such opening on the shortest way through the room graph.
+    """
+
+    def __init__(self, traversable: np.ndarray, labels: np.ndarray, ids: tuple[str, ...],
+                 graph: nx.Graph, robot_radius_m: float):
+        self.components, _ = ndimage.label(traversable, structure=np.ones((3, 3), dtype=bool))
+        self.graph = graph
+        self.diameter = 2 * robot_radius_m
+        self.parts: dict[str, set[int]] = {}
+        for index, room in enumerate(ids):
+            cells = self.components[(labels == index) & traversable]
+            self.parts[room] = set(np.unique(cells[cells > 0]).tolist())
+
+    def why_not(self, start: str, room: str) -> str | None:
+        """None when the robot in `start` can reach `room`; else the reason."""
+        if room == start:
+            return None
+        if not self.parts.get(room):
+            return self._too_small(room)
+        if not self.parts.get(start):
+            return f"the start `{start}` has no spot for the robot"
+        reachable = self._reachable_parts(start)
+        if self.parts[room] & reachable:
+            return None
+        if start not in self.graph or room not in self.graph or not nx.has_path(self.graph, start, room):
+            return f"no door leads to it from `{start}`"
+        way = nx.shortest_path(self.graph, start, room)
+        for u, v in zip(way, way[1:]):
+            if self.parts.get(v, set()) & reachable:
+                continue
+            if not self.parts.get(v):
+                return f"the way passes `{v}`, " + self._too_small(v)
+            return (f"the opening between `{u}` and `{v}` is narrower than the robot "
+                    f"({self.diameter:g} m across)")
+        return f"every way to it from `{start}` is narrower than the robot ({self.diameter:g} m across)"
+
+    def _reachable_parts(self, start: str) -> set[int]:
+        return set(self.parts.get(start, set()))
+
+    def _too_small(self, room: str) -> str:
+        return (f"`{room}` is smaller than the robot: no spot in it is {self.diameter / 2:g} m "
+                f"(the robot's radius) from every wall")
+
+
+def realism_of_building(building: Building, ids: dict[str, str]) -> Realism:
+    """layout.realism's measures on a plan's polygons (metres, y up, as rasterize_building)."""
+    scale = building.metres_per_unit
+    spaces = [Space(ids.get(space.id, space.id), space.label, space.rtype,
+                    polygon=tuple((p.x * scale, -p.y * scale) for p in space.polygon))
+              for space in building.spaces if len(space.polygon) >= 3]
+    return measure_spaces(spaces)
 
 
 def _anchor(room: str, index: int, rooms, traversable: np.ndarray, resolution: float) -> RoomAnchor | None:
@@ -113,8 +180,10 @@ def measure_plan(building: Building, options: EvaluateOptions = EvaluateOptions(
         anchor = _anchor(room, rooms.ids.index(room), rooms, traversable, res)
         if anchor is not None:
             anchors[room] = anchor
+    reach = Reach(traversable, rooms.labels, rooms.ids, graph, options.robot_radius_m)
     lengths: dict[tuple[str, str], float | None] = {}
     grid_lengths: dict[tuple[str, str], float | None] = {}
+    path_notes: dict[tuple[str, str], str] = {}
     dg = DistanceGrid(traversable) if len(entrances) > 1 else None
     for i, a in enumerate(entrances):
         later = entrances[i + 1 :]
@@ -127,6 +196,9 @@ def measure_plan(building: Building, options: EvaluateOptions = EvaluateOptions(
                 result = shortest_path(dg, anchors[a].cell, anchors[b].cell, dist)
             lengths[(a, b)] = None if result is None else result.length * res
             grid_lengths[(a, b)] = None if result is None else result.grid_length * res
+            if result is None:
+                path_notes[(a, b)] = (reach.why_not(a, b) or reach.why_not(b, a)
+                                      or "no path between the two rooms' anchor points")
 
     # exploration on the coarser grid
     factor = options.coarsening
@@ -135,6 +207,12 @@ def measure_plan(building: Building, options: EvaluateOptions = EvaluateOptions(
     coarse_trav = ~inflate(occupied, options.robot_radius_m, coarse_res)
     coarse_rooms = room_cells(building, grid, ids, factor) if factor > 1 else rooms
     start_room = options.start_room or (entrances[0] if entrances else sorted_rooms(rooms.ids)[0])
+    unreachable = {}
+    if start_room in rooms.ids:
+        for room in sorted_rooms(rooms.ids):
+            reason = reach.why_not(start_room, room)
+            if reason is not None:
+                unreachable[room] = reason
     exploration = None
     start_anchor = None
     note = ""
@@ -168,4 +246,7 @@ def measure_plan(building: Building, options: EvaluateOptions = EvaluateOptions(
         map_check=map_check,
         centres=building_centres(building),
         shapes=room_shapes(building),
+        unreachable=unreachable,
+        path_notes=path_notes,
+        realism=realism_of_building(building, ids),
     )

@@ -89,6 +89,9 @@ def _plan_dict(m: PlanMeasures, path: str) -> dict:
         "grid_paths_m": {_pair(a, b): v for (a, b), v in m.grid_path_lengths.items()},
         "exploration": _exploration_dict(m),
         "map_check": _map_check_dict(m),
+        "unreachable": dict(m.unreachable),
+        "path_notes": {_pair(a, b): note for (a, b), note in m.path_notes.items()},
+        "realism": None if m.realism is None else m.realism.summary(),
     }
 
 
@@ -249,6 +252,39 @@ def _map_check_lines(plans: list[dict], original: dict) -> list[str]:
     return out
 
 
+def _realism_lines(plans: list[dict], original: dict) -> list[str]:
+    """The realism section: entrances open to the outside, enclosed voids, outside walls,
+    slivers, and every room the robot cannot reach, with the reason."""
+    out = ["", "## Realism: entrances, voids, reach", "",
+           "| plan | entrances open | enclosed entrances | enclosed voids (share of room area) | rooms with an outside wall | slivers | rooms out of reach |",
+           "|---|---|---|---|---|---|---|"]
+    for g in plans:
+        r = g.get("realism")
+        label = g["name"] + (" (original)" if g is original else "")
+        if r is None:
+            out.append(f"| {label} | – | – | – | – | – | – |")
+            continue
+        enclosed = ", ".join(f"`{e}`" for e in r["enclosed_entrances"]) or "none"
+        slivers = "–" if r["slivers"] is None else str(r["slivers"])
+        out.append(f"| {label} | {r['entrances_open']}/{r['entrances']} | {enclosed} | {_pct_plain(r['void_share'])} | "
+                   f"{r['rooms_with_outside_wall']}/{r['rooms']} | {slivers} | {len(g.get('unreachable', {}))} |")
+    out += ["", "An entrance is open when at least 0.9 m of its outline borders the outside; gaps under 0.6 m "
+            "between rooms count as wall. Enclosed voids: empty space at least 0.6 m wide that the outside does "
+            "not reach. Slivers: gaps between facing walls wider than a wall and narrower than 0.6 m "
+            "(rectangular rooms only)."]
+    unreachable = [(g["name"] + (" (original)" if g is original else ""), room, why)
+                   for g in plans for room, why in g.get("unreachable", {}).items()]
+    if unreachable:
+        start = plans[0].get("exploration", {}).get("start_room")
+        out += ["", f"Rooms the robot cannot reach from the start room{f' `{start}`' if start else ''}:", ""]
+        out += [f"- {name}: `{room}`: {why}" for name, room, why in unreachable]
+    return out
+
+
+def _pct_plain(value: float | None) -> str:
+    return "–" if value is None else f"{100 * value:.1f} %"
+
+
 def map_check_warnings(report: dict) -> list[str]:
     """One line per map problem left after the repair, naming the plan and the rooms."""
     lines = []
@@ -310,6 +346,7 @@ def render_markdown(report: dict) -> str:
     out += ["", "Real shapes (issue 14): a room is non-rectangular when its polygon covers less than 0.8 of "
             "its bounding box (an L-room does); the area change is |generated polygon area / original − 1| "
             "per room."]
+    out += _realism_lines([o, *gens], o)
     out += ["", "## Path lengths between entrances (m)", ""]
     if report["path_pairs"]:
         head = "| pair | original | generated mean ± std | Δ mean | " + " | ".join(g["name"] for g in gens) + " |"
@@ -319,7 +356,11 @@ def render_markdown(report: dict) -> str:
             mean = _fmt(p["generated_mean_m"])
             std = _fmt(p["generated_std_m"])
             out.append(f"| {p['pair']} | {_fmt(p['original_m'])} | {mean} ± {std} | {_pct(p['relative_deviation_of_mean'])} | " + " | ".join(cells) + " |")
-        out += ["", f"Metric: {st['path_metric']}. Endpoints: {st['path_endpoints']}. – = unreachable or missing.", "", "![paths](paths.png)"]
+        out += ["", f"Metric: {st['path_metric']}. Endpoints: {st['path_endpoints']}. – = unreachable or missing; why:", ""]
+        notes = [(g["name"] + (" (original)" if g is o else ""), pair, note)
+                 for g in [o, *gens] for pair, note in g.get("path_notes", {}).items()]
+        out += [f"- {name}, {pair}: {note}" for name, pair, note in notes] or ["- every pair has a path"]
+        out += ["", "![paths](paths.png)"]
     else:
         out.append("The original has fewer than two entrances (E rooms): no pairs to compare.")
     out += ["", "## Exploration", ""]
