@@ -3,7 +3,7 @@
 Each building (a plan's variant) gets OUTDIR/NAME-vK/ with its usual files; OUTDIR/manifest.jsonl
 lists every building once. Re-running the same command skips what is done and intact and
 redoes missing or failed buildings. The progress bar goes to stderr (only on a terminal, not
-with -q); the summary goes to stdout.
+with -q); the summary goes to stdout (not with -q; with --format json a result object instead).
 """
 
 from __future__ import annotations
@@ -11,9 +11,10 @@ from __future__ import annotations
 import argparse
 import sys
 
-from layoutdsl.diagnostics import exitcodes
 from layoutdsl.cli.argtypes import non_negative_float, non_negative_int, positive_float, positive_int
 from layoutdsl.cli.compile import EMPHASES, STRATEGIES
+from layoutdsl.cli.output import Output, add_command, add_output_arguments
+from layoutdsl.diagnostics import exitcodes
 
 BATCH_NODE_LIMIT = 20
 """Default branch-and-bound node limit: a deterministic stopping rule where SCIP runs at all
@@ -30,23 +31,28 @@ MAX_FAILURES_SHOWN = 10
 
 def add_parser(subparsers) -> None:
     """Register the `batch` subcommand."""
-    parser = subparsers.add_parser(
-        "batch",
+    parser = add_command(
+        subparsers, "batch",
         help="make many verified buildings from specs and plans, resumably",
         description=(
-            "Make N variants of every input (specs .lay, building XML plans .xml, folders of\n"
-            "them, or list files .txt/.list with one path per line). Each building is compiled\n"
-            "in its own process, verified, and written to OUTDIR/NAME-vK/; OUTDIR/manifest.jsonl\n"
-            "has one JSON record per building (load it with pandas.read_json(path, lines=True)).\n"
-            "Run the same command again to finish an interrupted or partly failed batch: done\n"
-            "buildings whose files are intact are skipped. Seeds come from (plan name, variant,\n"
-            "--seed), so a building's bytes do not depend on where or when it ran.\n"
-            "--sample school:1000 adds 1,000 new buildings whose room graphs and sizes the sampler\n"
+            "Make N variants of every input (specs .lay, building XML plans .xml, folders of "
+            "them, or list files .txt/.list with one path per line). Each building is compiled "
+            "in its own process, verified, and written to OUTDIR/NAME-vK/ (the names compile "
+            "--variants gives its files); OUTDIR/manifest.jsonl has one JSON record per building "
+            "(load it with pandas.read_json(path, lines=True)).\n\n"
+            "Run the same command again to finish an interrupted or partly failed batch: done "
+            "buildings whose files are intact are skipped. Seeds come from (plan name, variant, "
+            "--seed), so a building's bytes do not depend on where or when it ran.\n\n"
+            "--sample school:1000 adds 1,000 new buildings whose room graphs and sizes the sampler "
             "draws (layoutdsl sample); --seed also seeds the sampler, so a re-run draws the same specs."
         ),
-        epilog=exitcodes.EPILOG + "  (batch: 3 when at least one building failed; see the manifest)\n",
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
+        examples=[
+            ("three variants of every spec and plan under a folder", "layoutdsl batch examples/floorplans -o dataset --variants 3"),
+            ("100 new school buildings drawn by the sampler", "layoutdsl batch --sample school:100 -o dataset"),
+            ("finish an interrupted batch: the same command again", "layoutdsl batch examples/floorplans -o dataset --variants 3"),
+            ("the counts and the manifest's path as JSON", "layoutdsl batch specs -o dataset --format json -q"),
+        ],
+    )  # fmt: skip
     parser.add_argument("inputs", nargs="*", metavar="INPUT", help="spec, plan, folder or list file")
     parser.add_argument("--sample", action="append", default=[], metavar="KIND:N",
                         help="also make N new buildings of a kind drawn by the sampler (e.g. school:1000; "
@@ -83,17 +89,19 @@ def add_parser(subparsers) -> None:
                         help="kill a building's process after S seconds (default: 2 x time limit + 60)")
     parser.add_argument("--emit", default="xml,png,world,map", metavar="FORMATS",
                         help="comma-separated output formats, as for compile (default xml,png,world,map)")
-    parser.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
+    add_output_arguments(parser)
     parser.set_defaults(run=run)
-
-
-def _error(message: str) -> int:
-    print(f"layoutdsl batch: error: {message}", file=sys.stderr)
-    return exitcodes.USAGE
 
 
 def run(args: argparse.Namespace) -> int:
     """Run a batch; 0 when every building is done, 3 when some failed, 2 on usage/I/O errors."""
+    out = Output("batch", args)
+    fields: dict = {}  # what the JSON result says about the batch, once it ran
+    code = _run(args, out, fields)
+    return out.finish(code, **fields)
+
+
+def _run(args: argparse.Namespace, out: Output, fields: dict) -> int:
     from pathlib import Path
 
     from layoutdsl.batch import (
@@ -102,26 +110,29 @@ def run(args: argparse.Namespace) -> int:
     from layoutdsl.emit import EmitError, parse_formats
 
     if args.address and args.engine != "dask":
-        return _error("--address needs --engine dask")
+        return out.error("--address needs --engine dask")
     if args.engine == "dask":
         from layoutdsl.batch.executors import CLUSTER_EXTRA_HINT
 
         try:
             import distributed  # noqa: F401
         except ImportError:
-            return _error(f"--engine dask needs the `distributed` package: {CLUSTER_EXTRA_HINT}")
+            return out.error(f"--engine dask needs the `distributed` package: {CLUSTER_EXTRA_HINT}")
     try:
         formats = parse_formats(args.emit)
     except EmitError as error:
-        return _error(str(error))
+        return out.error(str(error))
     outdir = Path(args.output)
     if outdir.exists() and not outdir.is_dir():
-        return _error(f"`{outdir}` exists and is not a directory")
+        return out.error(f"`{outdir}` exists and is not a directory")
     limits = SolveLimits(time_limit=args.time_limit, node_limit=args.node_limit, solution_limit=args.solution_limit,
                          gap=args.gap, emphasis=args.emphasis, strategy=args.strategy, search=args.search)
     timeout = args.timeout or 2 * args.time_limit + 60
     if not args.inputs and not args.sample:
-        return _error("give specs, plans, folders or list files, or --sample KIND:N")
+        return out.error("give specs, plans, folders or list files, or --sample KIND:N")
+    for path in args.inputs:  # the one I/O error style of every command
+        if not Path(path).exists():
+            return out.cannot_read(path, FileNotFoundError(2, "No such file or directory"))
     try:
         jobs = plan_jobs(args.inputs, args.variants, base_seed=args.seed, limits=limits,
                          formats=formats, timeout=timeout) if args.inputs else []
@@ -136,17 +147,18 @@ def run(args: argparse.Namespace) -> int:
             clash = next(name for name in names if names.count(name) > 1)
             raise BatchInputError(f"two buildings would be named `{clash}`: rename the input or drop the repeated --sample")
     except BatchInputError as error:
-        return _error(str(error))
+        return out.error(str(error))
     workers = args.workers or default_workers()
-    show = not args.quiet and sys.stderr.isatty()
+    show = not out.quiet and sys.stderr.isatty()
+    out.detail(f"{len(jobs)} buildings, {workers} at once")
     display = _Progress(len(jobs)) if show else None
     try:
         summary = run_batch(jobs, outdir, engine=args.engine, workers=workers, address=args.address,
                             progress=display, running=display.running if display else None)
     except (BatchBusy, EngineUnavailable) as error:
-        return _error(str(error))
+        return out.error(str(error))
     except OSError as error:
-        return _error(f"cannot write to `{outdir}`: {error.strerror or error}")
+        return out.cannot_write(getattr(error, "filename", None) or outdir, error)
     finally:
         if display:
             display.close()
@@ -172,7 +184,14 @@ def run(args: argparse.Namespace) -> int:
         lines.append(f"  ...         {len(summary.failures) - MAX_FAILURES_SHOWN} more failures in the manifest")
     if summary.failed:
         lines.append("  run the same command again to retry the failed buildings")
-    print("\n".join(lines))
+    out.summary("\n".join(lines))
+    out.wrote(summary.manifest)
+    fields.update({
+        "output": str(outdir), "manifest": str(summary.manifest), "total": summary.total,
+        "skipped": summary.skipped, "made": summary.done, "failed": summary.failed,
+        "failures": [{"building": building, "reason": reason} for building, reason in summary.failures],
+        "seconds": round(summary.seconds, 3),
+    })
     return exitcodes.NO_LAYOUT if summary.failed else exitcodes.OK
 
 

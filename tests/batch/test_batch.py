@@ -177,7 +177,8 @@ def test_killed_driver_resumes_without_redoing_finished_buildings(tmp_path, engi
     command, env = _kill_driver_after_first_record(tmp_path, extra)
     before = read_log(tmp_path)
     assert 1 <= len(before) < 4, "the driver was killed before it finished"
-    result = subprocess.run(command, env=env, capture_output=True, text=True, timeout=300)
+    again = [word for word in command if word != "-q"]  # the summary (which -q leaves out)
+    result = subprocess.run(again, env=env, capture_output=True, text=True, timeout=300)
     assert result.returncode == 0, result.stderr
     assert f"{len(before)} already done" in result.stdout
     log = [json.loads(line)["building"] for line in log_path(tmp_path).read_text().splitlines() if line.strip()]
@@ -220,7 +221,7 @@ def test_cli_records_a_plan_that_does_not_import_and_exits_3(tmp_path, capsys):
     broken.write_text("<building><floor><spaces><space id='a'>")  # cut short
     outdir = tmp_path / "out"
     code = main(["batch", str(broken), str(TINY), "-o", str(outdir), "--node-limit", "5",
-                 "--time-limit", "30", "--emit", "xml", "-q"])
+                 "--time-limit", "30", "--emit", "xml"])  # no -q: it would leave out the summary
     assert code == 3
     out = capsys.readouterr().out
     assert "2 buildings: 0 already done, 1 made, 1 failed" in out
@@ -251,7 +252,7 @@ def test_cli_names_buildings_that_repeat_an_earlier_variant(tmp_path, capsys):
     row.write_text((REPO / "tests" / "diagnostics" / "solve" / "W906-variants-in-a-long-boundary.lay").read_text())
     outdir = tmp_path / "out"
     code = main(["batch", str(row), "-o", str(outdir), "--variants", "3", "--node-limit", "5",
-                 "--time-limit", "30", "--emit", "xml", "-q"])
+                 "--time-limit", "30", "--emit", "xml"])  # no -q: it would leave out the summary
     assert code == 0
     out = capsys.readouterr().out
     assert "close       row: 2 buildings within 0.3 of an earlier variant (row-v2, row-v3); W906 says why" in out

@@ -60,7 +60,7 @@ def test_sample_jobs_carry_the_sampler_specs(small_model):
 def test_batch_sample_makes_verified_buildings_and_a_rerun_rewrites_nothing(tmp_path, small_model, capsys):
     out = tmp_path / "dataset"
     command = ["batch", "--sample", "school:2", "--sample-model", str(small_model), "-o", str(out),
-               "--emit", "xml", "--workers", "2", "--seed", "3", "-q"]
+               "--emit", "xml", "--workers", "2", "--seed", "3"]  # no -q: it would leave out the summary
     assert main(command) == 0
     records = [json.loads(line) for line in (out / "manifest.jsonl").read_text().splitlines()]
     assert [r["building"] for r in records] == ["school-0001-v1", "school-0002-v1"]
