@@ -14,6 +14,7 @@ import re
 import sys
 from importlib import resources
 
+from layoutdsl.cli.output import add_command, add_output_arguments
 from layoutdsl.diagnostics import exitcodes
 
 _CODE = re.compile(r"[EWI]\d{3}")  # I: info notes (layoutdsl.sizes.resolve)
@@ -56,20 +57,19 @@ def suggestion(wrong: str, codes: list[str]) -> str | None:
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register the `explain` subcommand."""
-    parser = subparsers.add_parser(
-        "explain",
+    parser = add_command(
+        subparsers, "explain",
         help="print what a diagnostic code means and how to fix it",
         description="Print the documentation page of a diagnostic code (E201, W301, ...): what it "
         "reports, why that is a problem, and an example. Without CODE, list every code.",
-        epilog="examples:\n  layoutdsl explain E102\n  layoutdsl explain            # every code and its title\n"
-        "  layoutdsl explain W906 --format json\n\n" + exitcodes.epilog((exitcodes.OK, exitcodes.USAGE)),
-        formatter_class=argparse.RawDescriptionHelpFormatter,
-    )
-    parser.add_argument("code", nargs="?", metavar="CODE", help="a code such as E102 (case does not matter)")
-    parser.add_argument(
-        "--format", choices=("text", "json"), default="text",
-        help="text: the page as Markdown (default); json: {code, severity, title, page}",
+        examples=[
+            ("the page of one code", "layoutdsl explain E102"),
+            ("every code and its title", "layoutdsl explain"),
+            ("a page as JSON: {code, severity, title, page}", "layoutdsl explain W906 --format json"),
+        ],
     )  # fmt: skip
+    parser.add_argument("code", nargs="?", metavar="CODE", help="a code such as E102 (case does not matter)")
+    add_output_arguments(parser)  # -q/-v/--format as every command (the page is printed whatever the level)
     parser.set_defaults(run=run)
     return parser
 
