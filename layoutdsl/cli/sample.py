@@ -19,6 +19,9 @@ from layoutdsl.diagnostics import exitcodes
 
 RECORDS_NAME = "samples.jsonl"
 
+PROGRESS_EVERY = 100
+"""A progress line (stderr) after this many samples: a thousand take half a minute."""
+
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     """Register the `sample` subcommand."""
@@ -176,6 +179,8 @@ def _write_samples(args, out: Output, grammar, sizes, count: int) -> int:
             except OSError as error:
                 return out.finish(out.cannot_write(path, error))
             records.append({**sample.record(), "file": path.name, "seed": args.seed, "model": grammar.digest})
+            if len(records) % PROGRESS_EVERY == 0 and len(records) < count:
+                out.progress(f"  {len(records)} of {count} specs")
             if out.verbose:
                 out.detail(f"  {sample.name}: {records[-1]['rooms']} rooms, {records[-1]['corridors']} corridor-like, "
                            f"{records[-1]['entrances']} entrances, cycle rank {records[-1]['cycle_rank']}")

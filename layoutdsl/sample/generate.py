@@ -30,7 +30,7 @@ import random
 
 import networkx as nx
 
-from layoutdsl.sample.grammar import Cluster, CorridorProfile, Grammar, PlanModel
+from layoutdsl.sample.grammar import Cluster, CorridorProfile, Grammar
 from layoutdsl.sample.novelty import NoveltyCheck
 
 MIN_ROOMS = 10
@@ -248,6 +248,4 @@ def sample_graphs(grammar: Grammar, like: str, count: int, seed: int, start: int
     return [sampler.sample(random.Random(sample_seed(seed, index, like))) for index in range(start, start + count)]
 
 
-__all__ = [
-    "MAX_ROOMS", "MIN_ROOMS", "PlanModel", "SampleError", "Sampler", "sample_graphs", "sample_seed",
-]
+__all__ = ["MAX_ROOMS", "MIN_ROOMS", "SampleError", "Sampler", "sample_graphs", "sample_seed"]

@@ -107,9 +107,9 @@ def node_label(graph: nx.Graph, node) -> str:
 @dataclass(frozen=True, slots=True)
 class Statistic:
     name: str
-    histogram: Callable[[nx.Graph], np.ndarray]
+    histogram: Callable[[nx.Graph], np.ndarray] | None
+    """One graph's histogram; None for labels, whose bins depend on the sets compared."""
     sigma: float = SIGMA
-    needs_area: bool = False
 
 
 STATISTICS = (
@@ -119,8 +119,8 @@ STATISTICS = (
     Statistic("degree", degrees),
     Statistic("clustering", clustering, CLUSTERING_SIGMA),
     Statistic("cycle rank", cycles),
-    Statistic("labels", lambda graph: np.zeros(0)),  # vocabulary-dependent: see label_histograms
-    Statistic("room area", room_areas, needs_area=True),
+    Statistic("labels", None),  # over the vocabulary of the sets compared: label_histograms
+    Statistic("room area", room_areas),
 )
 """The statistics bench/sample.py compares, in its table's order."""
 
@@ -143,7 +143,7 @@ def label_histograms(*sets: Sequence[nx.Graph]) -> list[list[np.ndarray]]:
 
 def histograms(statistic: Statistic, *sets: Sequence[nx.Graph]) -> list[list[np.ndarray]]:
     """Each set's histograms for a statistic (labels share one vocabulary across the sets)."""
-    if statistic.name == "labels":
+    if statistic.histogram is None:
         return label_histograms(*sets)
     return [[statistic.histogram(graph) for graph in graphs] for graphs in sets]
 
