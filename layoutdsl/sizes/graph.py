@@ -105,7 +105,7 @@ def spec_from_graph(
     return Spec(
         name=name,
         rooms=tuple(rooms),
-        boundary=Boundary(w, h, spans=MappingProxyType({})),
+        boundary=Boundary(w, h, spans=MappingProxyType({}), chosen=True),
         adjacencies=tuple(adjacency for *_, adjacency in adjacencies),
     )
 
