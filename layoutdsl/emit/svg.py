@@ -59,7 +59,10 @@ def _element(item, title: str | None) -> str:
     if isinstance(item, Rect):
         x0, x1 = sorted((item.x0, item.x1))
         y0, y1 = sorted((item.y0, item.y1))
-        attrs = f'x="{_n(x0)}" y="{_n(y0)}" width="{_n(x1 - x0)}" height="{_n(y1 - y0)}" fill="{item.fill or "none"}"'
+        # crispEdges: two rectangles that meet (an L-room's parts, a room over its walls)
+        # show no anti-aliased seam where they touch
+        attrs = (f'x="{_n(x0)}" y="{_n(y0)}" width="{_n(x1 - x0)}" height="{_n(y1 - y0)}" '
+                 f'fill="{item.fill or "none"}" shape-rendering="crispEdges"')  # fmt: skip
         if item.outline and item.width:
             attrs += f' stroke="{item.outline}" stroke-width="{item.width}"'
         name = "rect"
