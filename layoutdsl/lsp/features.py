@@ -67,7 +67,8 @@ def lint(text: str, path: str) -> list[EditorDiagnostic]:
         rng = Range(start_line, span.col - 1, end_line, span.end_col - 1)
         if start_line >= len(lines):  # a whole-file problem reported past the end
             rng = Range(len(lines) - 1, 0, len(lines) - 1, 0)
-        placed.append(EditorDiagnostic(diagnostic, rng, editor_message(diagnostic), fix_for(diagnostic, rng)))
+        fix = fix_for(diagnostic, rng, len(lines))
+        placed.append(EditorDiagnostic(diagnostic, rng, editor_message(diagnostic), fix))
     return placed
 
 
@@ -93,7 +94,16 @@ _REPLACEMENT_HINTS = (
 )
 
 
-def fix_for(diagnostic: Diagnostic, rng: Range) -> Fix | None:
+_REMOVE_LINE_HINTS = (
+    "remove one of the two lines",  # E111 adjacency listed twice, a setting given twice
+    "keep one hint per room",  # E113
+    "keep one point per room",  # E112, a room twice in one cluster
+)
+"""Hints of diagnostics that point at the second of two lines saying the same thing: the fix
+removes that line (the first stays, as the hint's note says where)."""
+
+
+def fix_for(diagnostic: Diagnostic, rng: Range, line_count: int) -> Fix | None:
     """The quick fix a diagnostic's hint names, if it names one."""
     if not diagnostic.help or rng.start_line != rng.end_line:
         return None
@@ -102,7 +112,21 @@ def fix_for(diagnostic: Diagnostic, rng: Range) -> Fix | None:
         if match:
             text = match.group("text")
             return Fix(f"Replace with `{text}` ({diagnostic.code})", rng, text)
+    if diagnostic.help in _REMOVE_LINE_HINTS:
+        line = rng.start_line
+        # the line and its end of line; the last line takes the end of the line before it
+        if line + 1 < line_count:
+            whole = Range(line, 0, line + 1, 0)
+        elif line > 0:
+            whole = Range(line - 1, _END_OF_LINE, line, _END_OF_LINE)
+        else:
+            whole = Range(line, 0, line, _END_OF_LINE)
+        return Fix(f"Remove line {line + 1} ({diagnostic.code})", whole, "")
     return None
+
+
+_END_OF_LINE = 1 << 30
+"""A column past any line's end: the server clamps it to the line's length."""
 
 
 # ----------------------------------------------------------------------------- navigation

@@ -124,8 +124,16 @@ class SpecLanguageServer(LanguageServer):
             severity=lsp.DiagnosticSeverity.Error if d.is_error else lsp.DiagnosticSeverity.Warning,
             code=d.code,
             source=SOURCE,
-            data={"replacement": item.fix.new_text, "title": item.fix.title} if item.fix else None,
+            data=self._fix_data(lines, item.fix) if item.fix else None,
         )
+
+    def _fix_data(self, lines: list[str], fix: features.Fix) -> dict:
+        """The quick fix, carried in the diagnostic's `data` (clients send it back with the
+        code-action request): its title, its text and the range it replaces, which is not
+        always the diagnostic's own (a fix may remove the whole line)."""
+        rng = self.range_to_client(lines, fix.range)
+        return {"title": fix.title, "replacement": fix.new_text,
+                "range": [rng.start.line, rng.start.character, rng.end.line, rng.end.character]}  # fmt: skip
 
 
 def _path_of(uri: str) -> str:
@@ -215,7 +223,9 @@ def build_server() -> SpecLanguageServer:
             data = diagnostic.data if isinstance(diagnostic.data, dict) else None
             if diagnostic.source != SOURCE or not data or "replacement" not in data:
                 continue
-            edit = lsp.TextEdit(diagnostic.range, data["replacement"])
+            where = data.get("range")
+            rng = lsp.Range(lsp.Position(*where[:2]), lsp.Position(*where[2:])) if where else diagnostic.range
+            edit = lsp.TextEdit(rng, data["replacement"])
             actions.append(lsp.CodeAction(
                 title=data.get("title") or f"Replace with `{data['replacement']}`",
                 kind=lsp.CodeActionKind.QuickFix,

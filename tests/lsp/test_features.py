@@ -95,3 +95,11 @@ def test_remembered_lines_give_the_same_spec_and_diagnostics(edited: str) -> Non
         assert lint(edited) == fresh  # and again, entirely from memory
     finally:
         parser.keep_parsed_lines(0)
+
+
+def test_a_repeated_last_line_is_removed_with_the_end_of_the_line_before_it() -> None:
+    text = "rooms\nhall 10 20 15 2 3 2.5 4 10 C HALL\n\nboundary\n20 12\n\nsettings\nseed 1\nseed 2"
+    (found,) = [d for d in features.lint(text, "last.lay") if d.diagnostic.code == "E014"]
+    assert found.fix.range == features.Range(7, features._END_OF_LINE, 8, features._END_OF_LINE)
+    lines = text.split("\n")
+    assert "\n".join(lines[:7] + [lines[7]]) == text[: text.rindex("\nseed 2")]  # what remains

@@ -266,6 +266,23 @@ async def test_a_quick_fix_applies_the_suggestion(client: LanguageClient, typo: 
     assert await diagnostics_of(client, uri) == []
 
 
+@pytest.mark.parametrize(
+    ("original", "repeated", "code"),
+    [("door hall 1.2 i\n", "door hall 1.2 i\nkitchen hall 0.9 e\n", "E111"), ("seed 3\n", "seed 3\nseed 4\n", "E014")],
+)  # fmt: skip
+async def test_a_quick_fix_removes_a_repeated_line(client: LanguageClient, original: str, repeated: str, code: str) -> None:
+    text = SPEC.replace(original, repeated)
+    uri = await open_doc(client, f"repeat-{code}", text)
+    (found,) = [d for d in client.diagnostics[uri] if d.severity == lsp.DiagnosticSeverity.Error]
+    assert found.code == code
+    actions = await client.text_document_code_action_async(
+        lsp.CodeActionParams(doc(uri), found.range, lsp.CodeActionContext(diagnostics=[found]))
+    )
+    (action,) = actions
+    assert action.title.startswith(f"Remove line {found.range.start.line + 1}")
+    assert apply_edits(text, action.edit.changes[uri]) == SPEC
+
+
 async def test_no_quick_fix_without_a_suggestion(client: LanguageClient) -> None:
     text = SPEC.replace("office hall 0.9 e", "zzzzzzzz hall 0.9 e")
     uri = await open_doc(client, "nofix", text)
