@@ -101,5 +101,9 @@ def test_a_repeated_last_line_is_removed_with_the_end_of_the_line_before_it() ->
     text = "rooms\nhall 10 20 15 2 3 2.5 4 10 C HALL\n\nboundary\n20 12\n\nsettings\nseed 1\nseed 2"
     (found,) = [d for d in features.lint(text, "last.lay") if d.diagnostic.code == "E014"]
     assert found.fix.range == features.Range(7, features._END_OF_LINE, 8, features._END_OF_LINE)
+    # applied as a client does, columns clamped to the line: `seed 2` and the newline before it go
     lines = text.split("\n")
-    assert "\n".join(lines[:7] + [lines[7]]) == text[: text.rindex("\nseed 2")]  # what remains
+    offset = [sum(len(line) + 1 for line in lines[:n]) for n in range(len(lines))]
+    start = offset[7] + min(found.fix.range.start_col, len(lines[7]))
+    end = offset[8] + min(found.fix.range.end_col, len(lines[8]))
+    assert text[:start] + text[end:] == text.removesuffix("\nseed 2")
