@@ -216,8 +216,11 @@ def parse_line(
     `diagnostics` when it is given; a line that fails to parse leaves none behind.
     """
     memo, key = _parsed_lines, (rule, text, line, filename)
-    if memo is not None and key in memo:
-        node, remembered = memo[key]
+    # one dict operation per look-up: the server lints in worker threads, and another
+    # thread may clear the memory between a membership test and a read
+    hit = memo.get(key) if memo is not None else None
+    if hit is not None:
+        node, remembered = hit
         if diagnostics is not None:
             diagnostics.extend(remembered)
         return node
