@@ -108,7 +108,13 @@ class SpecLanguageServer(LanguageServer):
             await asyncio.sleep(delay)
         document = self.workspace.get_text_document(uri)
         text, version = document.source, document.version
-        found = await asyncio.to_thread(features.lint, text, _path_of(uri))
+        try:
+            found = await asyncio.to_thread(features.lint, text, _path_of(uri))
+        except Exception as error:  # a bug in a check: say so in the editor's log, keep serving
+            log.exception("linting %s failed", uri)
+            self.window_log_message(lsp.LogMessageParams(
+                lsp.MessageType.Error, f"layoutdsl: linting failed (a bug in layoutdsl): {type(error).__name__}: {error}"))
+            return
         current = self.workspace.text_documents.get(uri)
         if current is None or current.version != version:
             return  # edited (or closed) while linting: the newer text's lint will publish
