@@ -29,6 +29,18 @@ depend on the machine and its load; say so when quoting them.
 `--renamed` compiles each plan with its rooms renamed and its lines shuffled (renamed()):
 whether the arrangement owes anything to the names and order an import takes from the
 original drawing.
+
+Every layout row also carries the realism measures of issue 40 (layoutdsl.layout.realism):
+entrances open to the outside (open/all), enclosed voids as a share of room area (and the
+original's), rooms with an outside wall (with/all) and slivers.
+
+`--graphs DIR` compiles the room graphs of DIR (the adjacency-matrix CSVs of
+../shared/graphs; read by layoutdsl.importer.graphs, sized by layoutdsl.sizes.spec_from_graph
+with the typical sizes of `--kind`, the boundary chosen by the tool), one row a graph: rooms,
+cycles, whether it holds four pairwise joined rooms (K4), verified, first layout and total
+seconds, room area / the rooms' target area, and the realism columns; then a summary line.
+
+    python bench/generation.py --graphs ../shared/graphs [--time-limit 60] [--only PATTERN]
 """
 
 from __future__ import annotations
@@ -76,6 +88,16 @@ def import_original(path: Path):
     return spec, area, original_fill, building_centres(building)
 
 
+def original_void_share(path: Path) -> float:
+    """The original plan's enclosed voids as a share of its room area."""
+    from layoutdsl.evaluate.plan import realism_of_building
+    from layoutdsl.evaluate.topology import room_ids
+    from layoutdsl.importer import read_building
+
+    building, _ = read_building(path)
+    return round(realism_of_building(building, room_ids(building)).void_share, 4)
+
+
 def _layout_row(spec, layout, area, original_fill, centres) -> dict:
     from layoutdsl.layout.difference import difference, layout_centres
     from layoutdsl.layout.verify import verify
@@ -89,30 +111,61 @@ def _layout_row(spec, layout, area, original_fill, centres) -> dict:
         "area_ratio": round(generated / area, 4) if area > 0 else None,
         "fill": round(fill(rects), 4),
         "original_fill": round(original_fill, 4),
+        **realism_columns(layout),
     }
 
 
-def _warm_annealer() -> dict:
-    """Anneal a small bundled spec once, so numba compiles the annealers' kernels (about 25 s)
-    and caches it before any plan is timed: a plan's first-layout time is then what a user
-    gets from the second compile on, not the install's one-off compile."""
-    import importlib.util
-
-    if importlib.util.find_spec("numba") is None:
-        return {"warmed": False}
+def _warm_up() -> dict:
+    """Compile a small bundled spec once, so whatever the generator compiles on first use
+    (numba kernels, cached to disk) is compiled before any plan is timed: a plan's
+    first-layout time is then what a user gets from the second compile on, not the
+    install's one-off compile."""
     from layoutdsl.api import lint_source, read_source
-    from layoutdsl.compile import generate
-    from layoutdsl.compile.anneal import anneal_geometry
-    from layoutdsl.compile.satellites import satellites_geometry
+    from layoutdsl.compile import compile_spec
+    from layoutdsl.solve import SolveOptions
 
     spec_path = Path(__file__).resolve().parents[1] / "specs" / "school_cycle.lay"
     spec, _ = lint_source(read_source(str(spec_path)))
-    # and the core-and-satellites annealer's (layoutdsl.compile.satellites), which compile runs
-    # on the plans it splits. Its 4-corridor ring is below generate.CORE_BLOCK_ROOMS, so the
-    # split is lowered to it here: the kernel's machine code is the same for any sizes (this
-    # process ends after the warm-up; the plans are compiled in processes of their own).
-    generate.CORE_BLOCK_ROOMS = 4
-    return {"warmed": anneal_geometry(spec, 0) is not None and satellites_geometry(spec, 0) is not None}
+    result = compile_spec(spec, SolveOptions(time_limit=60, quiet=True), explain_infeasible=False)
+    return {"warmed": result.layout is not None}
+
+
+def cycle_rank(graph) -> int:
+    """Independent cycles of a room graph: edges - nodes + connected components."""
+    import networkx as nx
+
+    return graph.number_of_edges() - graph.number_of_nodes() + nx.number_connected_components(graph)
+
+
+def spec_graph(spec):
+    """The room graph of a spec (rooms and adjacencies)."""
+    import networkx as nx
+
+    graph = nx.Graph()
+    graph.add_nodes_from(room.id for room in spec.rooms)
+    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
+    return graph
+
+
+def has_k4(graph) -> bool:
+    """Whether four rooms are pairwise joined (a K4 subgraph), which no four rectangles draw."""
+    import networkx as nx
+
+    return any(len(clique) >= 4 for clique in nx.find_cliques(graph))
+
+
+def realism_columns(layout) -> dict:
+    """The realism measures of a layout as row fields (layoutdsl.layout.realism)."""
+    from layoutdsl.layout.realism import measure_layout
+
+    realism = measure_layout(layout)
+    return {
+        "entrances": f"{len(realism.open_entrances)}/{len(realism.entrances)}",
+        "entrances_all_open": not realism.enclosed_entrances,
+        "void_share": round(realism.void_share, 4),
+        "outside_wall": f"{len(realism.rooms_with_outside_wall)}/{len(realism.outside_length)}",
+        "slivers": len(realism.slivers or ()),
+    }
 
 
 def renamed(spec, centres: dict, seed: int):
@@ -155,13 +208,13 @@ RENAME_SEED = 100
 
 def _compile_plan(path: str, time_limit: float, seed: int, rename: bool = False) -> dict:
     from layoutdsl.compile import compile_spec
-    from layoutdsl.compile.cycles import cycle_rank
     from layoutdsl.solve import SolveOptions
 
     spec, area, original_fill, centres = import_original(Path(path))
     if rename:
         spec, centres = renamed(spec, centres, RENAME_SEED + seed)
-    row = {"rooms": len(spec.rooms), "cycles": cycle_rank(spec)}
+    row = {"rooms": len(spec.rooms), "cycles": cycle_rank(spec_graph(spec)),
+           "original_void_share": original_void_share(Path(path))}
     began = time.monotonic()
     result = compile_spec(spec, SolveOptions(time_limit=time_limit, seed=seed, quiet=True),
                           explain_infeasible=False)
@@ -176,7 +229,7 @@ def _compile_plan(path: str, time_limit: float, seed: int, rename: bool = False)
 
 
 WARM_SECONDS = 120.0
-"""Most the annealer's warm-up (_warm_annealer) may take."""
+"""Most the warm-up (_warm_up) may take."""
 
 
 def isolated(function, *args, limit: float) -> dict:
@@ -188,16 +241,26 @@ COLUMNS = (
     ("plan", 44, "{}"), ("rooms", 5, "{}"), ("cycles", 6, "{}"), ("verified", 8, "{}"),
     ("first", 7, "{:.2f}"), ("seconds", 7, "{:.1f}"), ("difference", 6, "{:.3f}"),
     ("area_ratio", 6, "{:.3f}"), ("fill", 6, "{:.3f}"), ("original_fill", 8, "{:.3f}"),
+    ("entrances", 7, "{}"), ("void_share", 6, "{:.3f}"), ("original_void_share", 6, "{:.3f}"),
+    ("outside_wall", 8, "{}"), ("slivers", 7, "{}"),
 )
 HEADERS = {"first": "first s", "seconds": "total s", "difference": "diff", "area_ratio": "area",
-           "original_fill": "orig fill"}
+           "original_fill": "orig fill", "entrances": "entr", "void_share": "void",
+           "original_void_share": "o void", "outside_wall": "outside"}
+
+GRAPH_COLUMNS = (
+    ("plan", 22, "{}"), ("rooms", 5, "{}"), ("cycles", 6, "{}"), ("k4", 3, "{}"), ("verified", 8, "{}"),
+    ("first", 7, "{:.2f}"), ("seconds", 7, "{:.1f}"), ("area_ratio", 6, "{:.3f}"),
+    ("entrances", 7, "{}"), ("void_share", 6, "{:.3f}"), ("outside_wall", 8, "{}"), ("slivers", 7, "{}"),
+    ("reason", 0, "{}"),
+)
 
 
-def format_row(row: dict) -> str:
+def format_row(row: dict, columns=COLUMNS) -> str:
     cells = []
-    for key, width, fmt in COLUMNS:
+    for key, width, fmt in columns:
         value = row.get(key)
-        if key == "verified":
+        if key in ("verified", "k4"):
             text = "yes" if value else "no"
         else:
             text = "-" if value is None else fmt.format(value)
@@ -208,10 +271,10 @@ def format_row(row: dict) -> str:
     return line
 
 
-def header() -> str:
+def header(columns=COLUMNS) -> str:
     return " ".join(
-        HEADERS.get(key, key).ljust(width) if key == "plan" else HEADERS.get(key, key).rjust(width)
-        for key, width, _ in COLUMNS
+        HEADERS.get(key, key).ljust(width) if key in ("plan", "reason") else HEADERS.get(key, key).rjust(width)
+        for key, width, _ in columns
     )
 
 
@@ -232,13 +295,82 @@ def first_layouts(rows: list[dict]) -> str:
     return f"verified {len(verified)}/{len(rows)}; first layout median {median} s, max {worst} s"
 
 
+def realism_summary(rows: list[dict]) -> str:
+    """Over the verified rows: entrances open, layouts with every entrance open, voids."""
+    verified = [row for row in rows if row.get("verified") and row.get("entrances")]
+    opened = total = 0
+    for row in verified:
+        a, b = row["entrances"].split("/")
+        opened, total = opened + int(a), total + int(b)
+    voids = [row["void_share"] for row in verified]
+    within = sum(row["void_share"] <= row["original_void_share"] + 0.02 for row in verified
+                 if row.get("original_void_share") is not None)
+    text = (f"entrances open {opened}/{total}, layouts with every entrance open "
+            f"{sum(row['entrances_all_open'] for row in verified)}/{len(verified)}; void share median "
+            f"{statistics.median(voids) if voids else 0:.3f}, max {max(voids, default=0):.3f}")
+    if any(row.get("original_void_share") is not None for row in verified):
+        text += f", within original + 2 points: {within}/{len(verified)}"
+    return text + f"; layouts with slivers {sum(row['slivers'] > 0 for row in verified)}"
+
+
 def summary(rows: list[dict]) -> str:
     verified = [row for row in rows if row.get("verified")]
     area_ok = sum(meets(row)[0] for row in verified)
     fill_ok = sum(meets(row)[1] for row in verified)
     diff_ok = sum((row.get("difference") or 0) >= 0.3 for row in verified)
     return (f"{first_layouts(rows)}; difference >= 0.3: {diff_ok}; area within +-15 %: {area_ok}; "
-            f"fill >= 0.8 x original: {fill_ok}")
+            f"fill >= 0.8 x original: {fill_ok}\n{realism_summary(rows)}")
+
+
+def _compile_graph(path: str, time_limit: float, seed: int, kind: str) -> dict:
+    """Read a room graph, size it (the size model's typical sizes, boundary chosen), compile."""
+    from layoutdsl.api import lint_source
+    from layoutdsl.compile import compile_spec
+    from layoutdsl.diagnostics import has_errors
+    from layoutdsl.diagnostics.source import Source
+    from layoutdsl.importer.graphs import read_graph
+    from layoutdsl.sizes import spec_from_graph
+    from layoutdsl.solve import SolveOptions
+    from layoutdsl.syntax.format import format_spec
+
+    graph, diagnostics = read_graph(path)
+    if graph is None or has_errors(diagnostics):
+        return {"verified": False, "reason": "unreadable: " + "; ".join(d.message for d in diagnostics)}
+    row = {"rooms": graph.number_of_nodes(), "cycles": cycle_rank(graph), "k4": has_k4(graph)}
+    spec = spec_from_graph(graph, kind=kind, name=Path(path).stem)
+    # the spec as `layoutdsl import x.csv` writes it, read back and checked as compile reads it
+    checked, diagnostics = lint_source(Source(Path(path).stem + ".lay", format_spec(spec)))
+    if checked is None or has_errors(diagnostics):
+        row.update(verified=False, reason="spec: " + "; ".join(f"{d.code} {d.message}" for d in diagnostics
+                                                               if d.is_error))
+        return row
+    target = sum(room.target_w * room.target_h for room in checked.rooms)
+    began = time.monotonic()
+    result = compile_spec(checked, SolveOptions(time_limit=time_limit, seed=seed, quiet=True),
+                          explain_infeasible=True)
+    row["seconds"] = round(time.monotonic() - began, 3)
+    row["status"] = result.status
+    if result.layout is None:
+        row["verified"] = False
+        row["reason"] = "; ".join(f"{d.code} {d.message}" for d in result.diagnostics)[:300]
+        return row
+    from layoutdsl.layout.verify import verify
+
+    layout = result.layout
+    reference = checked
+    if (layout.width, layout.height) != (checked.boundary.w, checked.boundary.h):
+        # the tool fitted the boundary it chose to the layout (or grew it): the layout is
+        # verified against the spec with the boundary it reports, and the row says so
+        from dataclasses import replace
+
+        row["boundary"] = f"{checked.boundary.w:g}x{checked.boundary.h:g} -> {layout.width:g}x{layout.height:g}"
+        reference = replace(checked, boundary=replace(checked.boundary, w=layout.width, h=layout.height))
+    row["verified"] = not verify(reference, layout)
+    row["first"] = layout.solve.first_feasible_seconds if layout.solve else None
+    row["area_ratio"] = round(sum(r.area for r in layout.rooms) / target, 4) if target else None
+    row["wall_clock_limited"] = bool(getattr(layout.solve, "wall_clock_limited", False))
+    row.update(realism_columns(layout))
+    return row
 
 
 THROUGHPUT_VARIANTS = 25
@@ -349,6 +481,9 @@ def main(argv: list[str] | None = None) -> int:
                         help="compile N graph variants of each plan (--only) instead of one layout")
     parser.add_argument("--renamed", action="store_true",
                         help="rename each plan's rooms and shuffle its lines first (see renamed())")
+    parser.add_argument("--graphs", type=Path, metavar="DIR",
+                        help="compile the room graphs (*.csv, *.json, *.graphml) of DIR instead of the plans")
+    parser.add_argument("--kind", default="school", help="--graphs: the size model's building kind (default school)")
     parser.add_argument("--json", action="store_true", help="print JSON rows instead of the table")
     parser.add_argument("--out", type=Path, help="also write the table (or JSON) to this file")
     args = parser.parse_args(argv)
@@ -359,9 +494,27 @@ def main(argv: list[str] | None = None) -> int:
         print(text, flush=True)
         lines.append(text)
 
-    # every mode times compiles: none should pay numba's one-off compile of the annealer
-    isolated(_warm_annealer, limit=WARM_SECONDS)
-    if args.variants:
+    # every mode times compiles: none should pay a one-off compile of the generator's kernels
+    isolated(_warm_up, limit=WARM_SECONDS)
+    if args.graphs:
+        from fnmatch import fnmatch
+
+        files = sorted(p for p in args.graphs.iterdir() if p.suffix in (".csv", ".json", ".graphml"))
+        if args.only:
+            patterns = args.only.split(",")
+            files = [p for p in files if any(fnmatch(p.name, f"*{pat}*") for pat in patterns)]
+        rows = []
+        if not args.json:
+            emit(header(GRAPH_COLUMNS))
+        for path in files:
+            row = {"plan": path.stem}
+            row.update(isolated(_compile_graph, str(path), args.time_limit, args.seed, args.kind,
+                                limit=args.time_limit))
+            rows.append(row)
+            emit(json.dumps(row) if args.json else format_row(row, GRAPH_COLUMNS))
+        if not args.json:
+            emit(f"{first_layouts(rows)}\n{realism_summary(rows)}")
+    elif args.variants:
         for path in plan_files(args.folder, args.only):
             result = isolated(_variants_of_plan, str(path), args.variants, args.seed,
                               args.time_limit, args.workers, limit=args.time_limit * args.variants)
