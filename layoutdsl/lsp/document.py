@@ -17,6 +17,7 @@ import re
 from dataclasses import dataclass, field
 from functools import cached_property
 
+from layoutdsl.syntax.ast import ROOM_TYPES
 from layoutdsl.syntax.parser import SECTIONS
 
 _COMMENT = re.compile(r"(?:^|(?<=\s))#")
@@ -198,7 +199,7 @@ class SpecDocument:
 
 @dataclass(frozen=True, slots=True)
 class RoomEntry:
-    """A `rooms` line as written: `id [8 numbers] rtype label... [onB] [cover=W] [error=W]`.
+    """A `rooms` line as written: `id [8 numbers] [rtype] label... [onB] [cover=W] [error=W]`.
 
     Read lexically so that hover works on a spec that does not parse yet; the numbers are
     the words after the id that read as numbers (none for a room whose sizes the size model
@@ -219,7 +220,11 @@ class RoomEntry:
         numbers: list[str] = []
         while rest and is_number(rest[0]):
             numbers.append(rest.pop(0))
-        rtype = rest.pop(0) if rest else None
+        # after the sizes the next word is the room type, whatever it is; a sizeless line
+        # (`id [rtype] label...`) has one only if that word is R, C or E (as the parser reads it)
+        rtype = None
+        if rest and (numbers or rest[0] in ROOM_TYPES):
+            rtype = rest.pop(0)
         weights = []
         while rest and "=" in rest[-1]:
             weights.insert(0, rest.pop())

@@ -15,7 +15,7 @@ from layoutdsl.api import lint_source
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.diagnostics.source import Source
 from layoutdsl.lsp.document import RoomEntry, SpecDocument, Word, is_number
-from layoutdsl.syntax.ast import ADJACENCY_TYPES, EMPHASES, ROOM_TYPE_NAMES, ROOM_TYPES, SETTING_KEYS
+from layoutdsl.syntax.ast import ADJACENCY_TYPES, EMPHASES, ROOM_TYPE_NAMES, ROOM_TYPES, SETTING_KEYS, Room, Spec
 from layoutdsl.syntax.format import format_source
 from layoutdsl.syntax.parser import SECTIONS
 
@@ -56,9 +56,18 @@ class EditorDiagnostic:
 # ----------------------------------------------------------------------------- diagnostics
 
 
-def lint(text: str, path: str) -> list[EditorDiagnostic]:
+@dataclass(frozen=True, slots=True)
+class Linted:
+    """A lint's result: the spec when it parsed (sizeless rooms sized by the size model), and
+    the diagnostics placed in the editor."""
+
+    spec: Spec | None
+    diagnostics: list[EditorDiagnostic]
+
+
+def lint(text: str, path: str) -> Linted:
     """Lint a text as `layoutdsl lint` does and place each diagnostic in the editor."""
-    _, diagnostics = lint_source(Source(path, text))
+    spec, diagnostics = lint_source(Source(path, text))
     lines = text.split("\n")
     placed = []
     for diagnostic in diagnostics:
@@ -69,7 +78,7 @@ def lint(text: str, path: str) -> list[EditorDiagnostic]:
             rng = Range(len(lines) - 1, 0, len(lines) - 1, 0)
         fix = fix_for(diagnostic, rng, len(lines))
         placed.append(EditorDiagnostic(diagnostic, rng, editor_message(diagnostic), fix))
-    return placed
+    return Linted(spec, placed)
 
 
 def editor_message(diagnostic: Diagnostic) -> str:
@@ -154,26 +163,37 @@ def references(document: SpecDocument, line: int, column: int, include_declarati
 _SIZE_ROWS = (("width", 0), ("height", 3))
 
 
-def hover(document: SpecDocument, line: int, column: int) -> tuple[str, Range] | None:
-    """Markdown about the room id under the cursor: type, label, size bounds, adjacencies."""
+def hover(document: SpecDocument, line: int, column: int, spec: Spec | None = None) -> tuple[str, Range] | None:
+    """Markdown about the room id under the cursor: type, label, size bounds, adjacencies.
+    `spec` (the last one that parsed) gives the sizes the size model chose for a sizeless room."""
     use = document.room_use_at(line, column)
     if use is None:
         return None
     room_id = use.word.text
     if room_id not in document.room_lines:
         return f"`{room_id}`: no room with this id is defined in `rooms`", Range.of_word(use.word)
-    return room_markdown(document, document.room_entry(room_id)), Range.of_word(use.word)
+    parsed = spec.room(room_id) if spec is not None else None
+    return room_markdown(document, document.room_entry(room_id), parsed), Range.of_word(use.word)
 
 
-def room_markdown(document: SpecDocument, room: RoomEntry) -> str:
-    kind = ROOM_TYPE_NAMES.get(room.rtype or "", f"type `{room.rtype}`")
+def _size_table(numbers: tuple[str, ...]) -> list[str]:
+    n = numbers
+    out = ["| | min | max | target |", "|---|---|---|---|"]
+    out += [f"| {name} (m) | {n[i]} | {n[i + 1]} | {n[i + 2]} |" for name, i in _SIZE_ROWS]
+    return [*out, "", f"aspect ratio {n[6]} to {n[7]}"]
+
+
+def room_markdown(document: SpecDocument, room: RoomEntry, parsed: Room | None = None) -> str:
+    kind = ROOM_TYPE_NAMES.get(room.rtype or "", f"type `{room.rtype}`" if room.rtype else "no type given")
     defined = document.definitions[room.id].line + 1
     out = [f"**{room.id}**: {kind} `{room.label}` (line {defined})", ""]
     if len(room.numbers) >= 8:
-        n = room.numbers
-        out += ["| | min | max | target |", "|---|---|---|---|"]
-        out += [f"| {name} (m) | {n[i]} | {n[i + 1]} | {n[i + 2]} |" for name, i in _SIZE_ROWS]
-        out += ["", f"aspect ratio {n[6]} to {n[7]}"]
+        out += _size_table(room.numbers)
+    elif not room.numbers and parsed is not None and parsed.sizes_from:
+        chosen = (parsed.min_w, parsed.max_w, parsed.target_w, parsed.min_h, parsed.max_h, parsed.target_h,
+                  parsed.min_ar, parsed.max_ar)  # fmt: skip
+        out += [f"sizes from the size model ({parsed.sizes_from}), at the last lint:", ""]
+        out += _size_table(tuple(f"{value:g}" for value in chosen))
     elif not room.numbers:
         out.append("sizes: none written (the size model chooses them)")
     else:
@@ -263,12 +283,13 @@ def _room_line_completions(document: SpecDocument, previous: list[str], index: i
     if index == 0:
         return []  # a new room's id: nothing to offer but the section names
     after_id = previous[1:]
+    types = [Completion(t, "value", ROOM_TYPE_NAMES[t]) for t in ROOM_TYPES]
+    if not after_id:
+        # the eight sizes, or a sizeless line: a room type or the label straight away
+        return types + [Completion(label, "label") for label in document.labels(except_line=line)]
     if all(is_number(word) for word in after_id):
-        # still among the sizes; the room type comes after the 8 sizes (or right after the
-        # id when the size model chooses them)
-        if len(after_id) in (0, 8):
-            return [Completion(t, "value", ROOM_TYPE_NAMES[t]) for t in ROOM_TYPES]
-        return []
+        # still among the sizes; the room type comes after the eighth
+        return types if len(after_id) == 8 else []
     items = [Completion(label, "label") for label in document.labels(except_line=line)]
     if len(after_id) > 1 + sum(is_number(w) for w in after_id):  # a label word is written
         items += [Completion("onB", "flag", "the room touches the boundary (the thesis, 5.12)")]

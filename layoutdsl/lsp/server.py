@@ -19,6 +19,7 @@ from pygls.lsp.server import LanguageServer
 from layoutdsl import __version__
 from layoutdsl.lsp import features
 from layoutdsl.lsp.document import SpecDocument, split_lines
+from layoutdsl.syntax.ast import Spec
 from layoutdsl.syntax import parser
 
 DEBOUNCE_SECONDS = 0.2
@@ -39,6 +40,13 @@ _COMPLETION_KINDS = {
 }
 
 
+_SEVERITIES = {
+    "error": lsp.DiagnosticSeverity.Error,
+    "warning": lsp.DiagnosticSeverity.Warning,
+    "info": lsp.DiagnosticSeverity.Information,  # what the tool decided (sizes, boundary): not a problem
+}
+
+
 @dataclass
 class _OpenSpec:
     """What the server keeps per open document: its lint task and its latest index."""
@@ -46,6 +54,8 @@ class _OpenSpec:
     pending: asyncio.Task | None = None
     index: SpecDocument | None = None
     index_text: str | None = None
+    spec: Spec | None = None
+    """The last spec that parsed: the sizes the size model gave its sizeless rooms."""
 
 
 class SpecLanguageServer(LanguageServer):
@@ -109,7 +119,7 @@ class SpecLanguageServer(LanguageServer):
         document = self.workspace.get_text_document(uri)
         text, version = document.source, document.version
         try:
-            found = await asyncio.to_thread(features.lint, text, _path_of(uri))
+            linted = await asyncio.to_thread(features.lint, text, _path_of(uri))
         except Exception as error:  # a bug in a check: say so in the editor's log, keep serving
             log.exception("linting %s failed", uri)
             self.window_log_message(lsp.LogMessageParams(
@@ -118,8 +128,10 @@ class SpecLanguageServer(LanguageServer):
         current = self.workspace.text_documents.get(uri)
         if current is None or current.version != version:
             return  # edited (or closed) while linting: the newer text's lint will publish
+        if linted.spec is not None:
+            self.state(uri).spec = linted.spec
         lines = split_lines(text)
-        diagnostics = [self._lsp_diagnostic(lines, item) for item in found]
+        diagnostics = [self._lsp_diagnostic(lines, item) for item in linted.diagnostics]
         self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri, diagnostics, version))
 
     def _lsp_diagnostic(self, lines: list[str], item: features.EditorDiagnostic) -> lsp.Diagnostic:
@@ -127,7 +139,7 @@ class SpecLanguageServer(LanguageServer):
         return lsp.Diagnostic(
             range=self.range_to_client(lines, item.range),
             message=item.message,
-            severity=lsp.DiagnosticSeverity.Error if d.is_error else lsp.DiagnosticSeverity.Warning,
+            severity=_SEVERITIES.get(d.severity.value, lsp.DiagnosticSeverity.Warning),
             code=d.code,
             source=SOURCE,
             data=self._fix_data(lines, item.fix) if item.fix else None,
@@ -178,7 +190,8 @@ def build_server() -> SpecLanguageServer:
     @ls.feature(lsp.TEXT_DOCUMENT_HOVER)
     def hover(ls: SpecLanguageServer, params: lsp.HoverParams) -> lsp.Hover | None:
         index, lines = ls.index(params.text_document.uri)
-        found = features.hover(index, *ls.from_client(lines, params.position))
+        spec = ls.state(params.text_document.uri).spec
+        found = features.hover(index, *ls.from_client(lines, params.position), spec)
         if found is None:
             return None
         markdown, rng = found

@@ -48,6 +48,8 @@ def test_a_room_line_is_read_word_by_word() -> None:
     assert SpecDocument(SPEC).room_entry("ROOM#3").label == "STORE ROOM"
     sizeless = SpecDocument("rooms\nlobby E ENTRANCE HALL onB\n").room_entry("lobby")
     assert (sizeless.numbers, sizeless.rtype, sizeless.label, sizeless.on_boundary) == ((), "E", "ENTRANCE HALL", True)
+    untyped = SpecDocument("rooms\nR10 CLASSROOM\n").room_entry("R10")
+    assert (untyped.rtype, untyped.label) == (None, "CLASSROOM")  # only R, C or E is a type there
 
 
 def _completions(text: str, line: int, column: int) -> list[str]:
@@ -69,7 +71,7 @@ def test_completion_follows_the_words_place_on_its_line() -> None:
 
 def test_fixes_are_read_from_the_hints_that_name_a_replacement() -> None:
     text = "rooms\nhall 10 20 15 2 3 2,5 4 10 C HALL\nstore 1 2 1 1 2 1 1 2 c STORE\n\nboundary\n20 12\n\nadjacencys\n"
-    found = {d.diagnostic.code: d.fix for d in features.lint(text, "fix.lay")}
+    found = {d.diagnostic.code: d.fix for d in features.lint(text, "fix.lay").diagnostics}
     assert found["E005"] == features.Fix("Replace with `2.5` (E005)", features.Range(1, 18, 1, 21), "2.5")
     assert text.split("\n")[1][18:21] == "2,5"
     assert found["E012"].new_text == "C" and found["E001"].new_text == "adjacencies"
@@ -99,7 +101,7 @@ def test_remembered_lines_give_the_same_spec_and_diagnostics(edited: str) -> Non
 
 def test_a_repeated_last_line_is_removed_with_the_end_of_the_line_before_it() -> None:
     text = "rooms\nhall 10 20 15 2 3 2.5 4 10 C HALL\n\nboundary\n20 12\n\nsettings\nseed 1\nseed 2"
-    (found,) = [d for d in features.lint(text, "last.lay") if d.diagnostic.code == "E014"]
+    (found,) = [d for d in features.lint(text, "last.lay").diagnostics if d.diagnostic.code == "E014"]
     assert found.fix.range == features.Range(7, features._END_OF_LINE, 8, features._END_OF_LINE)
     # applied as a client does, columns clamped to the line: `seed 2` and the newline before it go
     lines = text.split("\n")

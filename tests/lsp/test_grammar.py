@@ -71,7 +71,8 @@ def test_every_token_of_the_bundled_specs_is_highlighted_as_what_it_is(tokenized
             line = room.span.line
             kinds = [(text, scopes) for number, text, scopes in tokens if number == line and "comment" not in scopes]
             assert kinds[0] == (room.id, "entity.name.type.room.lay"), lines[line - 1]
-            assert (room.rtype, "storage.type.room-type.lay") in kinds
+            if "rtype" in room.spans:  # a sizeless line may leave the type out
+                assert (room.rtype, "storage.type.room-type.lay") in kinds
             label = [text for text, scopes in kinds if scopes == "string.unquoted.label.lay"]
             assert " ".join(label) == room.label
             assert ("onB", "constant.language.flag.on-boundary.lay") in kinds if room.on_boundary else True

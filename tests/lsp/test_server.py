@@ -7,6 +7,7 @@ each test opens its own document URI so the tests do not see each other's state.
 from __future__ import annotations
 
 import asyncio
+import re
 import subprocess
 import sys
 
@@ -320,3 +321,17 @@ async def test_navigation_works_while_the_spec_does_not_parse(client: LanguageCl
     assert hover is not None and "room `KITCHEN`" in hover.contents.value
     result = await client.text_document_definition_async(lsp.DefinitionParams(doc(uri), where))
     assert result.range.start == position_of(text, "kitchen 3 5")
+
+
+async def test_a_sizeless_room_hovers_with_the_size_models_sizes(client: LanguageClient) -> None:
+    # `id [rtype] label`: the size model gives the sizes; lint notes where they came from
+    text = SPEC.replace("kitchen 3 5 4 3 5 4 1 1.67 R KITCHEN", "kitchen R KITCHEN")
+    uri = await open_doc(client, "sizeless", text)
+    infos = [d for d in client.diagnostics[uri] if d.severity == lsp.DiagnosticSeverity.Information]
+    assert infos and not [d for d in client.diagnostics[uri] if d.severity == lsp.DiagnosticSeverity.Error]
+    result = await client.text_document_hover_async(lsp.HoverParams(doc(uri), position_of(text, "kitchen hall")))
+    hover = result.contents.value
+    assert "**kitchen**: room `KITCHEN`" in hover and "sizes from the size model" in hover
+    widths = re.search(r"\| width \(m\) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \|", hover)
+    low, high, target = map(float, widths.groups())
+    assert 0 < low <= target <= high
