@@ -9,15 +9,17 @@ editor and the command line never disagree.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
+from dataclasses import MISSING, dataclass, fields
 
 from layoutdsl.api import lint_source
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.diagnostics.source import Source
 from layoutdsl.lsp.document import RoomEntry, SpecDocument, Word, is_number
-from layoutdsl.syntax.ast import ADJACENCY_TYPES, EMPHASES, ROOM_TYPE_NAMES, ROOM_TYPES, SETTING_KEYS, Room, Spec
+from layoutdsl.syntax.ast import (
+    ADJACENCY_TYPES, EMPHASES, ROOM_TYPE_NAMES, ROOM_TYPES, SETTING_KEYS, Room, Settings, Spec,
+)  # fmt: skip
 from layoutdsl.syntax.format import format_source
-from layoutdsl.syntax.parser import SECTIONS
+from layoutdsl.syntax.parser import LINE_SYNOPSIS, SECTION_RULES, SECTIONS
 
 
 @dataclass(frozen=True, slots=True)
@@ -165,15 +167,45 @@ _SIZE_ROWS = (("width", 0), ("height", 3))
 
 def hover(document: SpecDocument, line: int, column: int, spec: Spec | None = None) -> tuple[str, Range] | None:
     """Markdown about the room id under the cursor: type, label, size bounds, adjacencies.
-    `spec` (the last one that parsed) gives the sizes the size model chose for a sizeless room."""
+    `spec` (the last one that parsed) gives the sizes the size model chose for a sizeless room.
+    On a section name, the shape of its lines; on a setting's key, its default."""
     use = document.room_use_at(line, column)
     if use is None:
-        return None
+        return _keyword_hover(document, line, column)
     room_id = use.word.text
     if room_id not in document.room_lines:
         return f"`{room_id}`: no room with this id is defined in `rooms`", Range.of_word(use.word)
     parsed = spec.room(room_id) if spec is not None else None
     return room_markdown(document, document.room_entry(room_id), parsed), Range.of_word(use.word)
+
+
+_SECTION_SHAPES = {
+    "boundary": ("boundary_size", "obstacle"),
+    "clusters": ("cluster_header", "cluster_member"),
+}
+"""Sections whose lines come in two shapes (parser.LINE_SYNOPSIS names each)."""
+
+
+def _keyword_hover(document: SpecDocument, line: int, column: int) -> tuple[str, Range] | None:
+    spec_line = document.line(line)
+    word = next((w for w in spec_line.words if w.contains(line, column)), None) if spec_line else None
+    if word is None:
+        return None
+    if spec_line.is_header:
+        shapes = _SECTION_SHAPES.get(word.text, (SECTION_RULES[word.text],))
+        lines = "\n".join(LINE_SYNOPSIS[shape] for shape in shapes)
+        return f"section `{word.text}`: one entry per line\n\n```\n{lines}\n```", Range.of_word(word)
+    if spec_line.section == "settings" and word is spec_line.words[0] and word.text in SETTING_KEYS:
+        default = _SETTING_DEFAULTS.get(word.text)
+        text = f"setting `{word.text}`" + (f", default `{default}`" if default is not None else "")
+        if word.text == "emphasis":
+            text += "; one of " + ", ".join(f"`{value}`" for value in EMPHASES)
+        return text, Range.of_word(word)
+    return None
+
+
+_SETTING_DEFAULTS = {f.name: ("none" if f.default is None else f.default)
+                     for f in fields(Settings) if f.name in SETTING_KEYS and f.default is not MISSING}  # fmt: skip
 
 
 def _size_table(numbers: tuple[str, ...]) -> list[str]:

@@ -109,3 +109,14 @@ def test_a_repeated_last_line_is_removed_with_the_end_of_the_line_before_it() ->
     start = offset[7] + min(found.fix.range.start_col, len(lines[7]))
     end = offset[8] + min(found.fix.range.end_col, len(lines[8]))
     assert text[:start] + text[end:] == text.removesuffix("\nseed 2")
+
+
+def test_hover_on_a_section_name_or_a_setting_key() -> None:
+    text = "rooms\nhall 10 20 15 2 3 2.5 4 10 C HALL\n\nboundary\n20 12\n\nsettings\nwalldim 0.3\nemphasis default\n"
+    document = SpecDocument(text)
+    markdown, where = features.hover(document, 3, 2)
+    assert "section `boundary`" in markdown and "w h\nid x y w h" in markdown
+    assert where == features.Range(3, 0, 3, 8)
+    assert features.hover(document, 7, 1)[0] == "setting `walldim`, default `0.2`"
+    assert "`feasibility`" in features.hover(document, 8, 1)[0]
+    assert features.hover(document, 7, 9) is None  # a setting's value
