@@ -47,7 +47,7 @@ def space_count(path: Path) -> int:
 def batch_command(inputs: list[Path], outdir: Path, args, *extra: str) -> list[str]:
     return [sys.executable, "-m", "layoutdsl", "batch", *map(str, inputs), "-o", str(outdir),
             "--variants", str(args.variants), "--node-limit", str(args.node_limit),
-            "--time-limit", str(args.time_limit), "-q", *extra]
+            "--time-limit", str(args.time_limit), *extra]  # no -q: the summary line is read back
 
 
 def environment() -> dict[str, str]:
