@@ -133,6 +133,25 @@ def run(args: argparse.Namespace) -> int:
     except OSError as error:
         return out.finish(out.cannot_write(args.output, error))
     out.wrote(*written)
+    for line in realism_lines(report):
+        out.progress(line)
     elapsed = time.monotonic() - started
     out.summary(f"wrote {len(written)} files to {args.output} in {elapsed:.1f} s")
-    return out.finish(exitcodes.OK, report=str(Path(args.output) / "report.json"))
+    return out.finish(exitcodes.OK, report=str(Path(args.output) / "report.json"),
+                      realism={g["name"]: g.get("realism") for g in [report["original"], *report["generated"]]})
+
+
+def realism_lines(report: dict) -> list[str]:
+    """One line a plan: entrances open to the outside, enclosed voids, rooms out of reach."""
+    lines = []
+    for plan in [report["original"], *report["generated"]]:
+        realism = plan.get("realism")
+        if realism is None:
+            continue
+        unreachable = plan.get("unreachable", {})
+        lines.append(
+            f"{plan['name']}: entrances open {realism['entrances_open']}/{realism['entrances']}, "
+            f"enclosed voids {100 * realism['void_share']:.1f} % of room area, "
+            f"{realism['rooms_with_outside_wall']}/{realism['rooms']} rooms with an outside wall"
+            + (f", {len(unreachable)} rooms out of the robot's reach ({', '.join(unreachable)})" if unreachable else ""))
+    return lines

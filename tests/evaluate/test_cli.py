@@ -59,3 +59,16 @@ def test_real_plan_against_itself_end_to_end(tmp_path):
 def test_unknown_start_room_is_a_usage_error(tmp_path):
     result = _run(SMALL_PLAN, SMALL_PLAN, "-o", tmp_path / "r", "--start-room", "E9")
     assert result.returncode == 2 and "E9" in result.stderr
+
+
+def test_the_realism_of_every_plan_is_printed_and_in_the_json_result(tmp_path):
+    result = _run(SMALL_PLAN, SMALL_PLAN, "-o", tmp_path / "r", "--format", "json")
+    assert result.returncode == 0, result.stderr
+    payload = json.loads(result.stdout)
+    # the same plan twice: both rows carry the same measures
+    measures = list(payload["realism"].values())
+    assert measures and measures[0]["rooms"] == 8 and measures[0]["void_share"] >= 0
+    report = json.loads((tmp_path / "r" / "report.json").read_text())
+    assert report["original"]["realism"] == measures[0]
+    text = _run(SMALL_PLAN, SMALL_PLAN, "-o", tmp_path / "r2")
+    assert "entrances open" in text.stderr and "rooms with an outside wall" in text.stderr
