@@ -128,11 +128,16 @@ class SpecLanguageServer(LanguageServer):
         current = self.workspace.text_documents.get(uri)
         if current is None or current.version != version:
             return  # edited (or closed) while linting: the newer text's lint will publish
+        state = self.state(uri)
         if linted.spec is not None:
-            self.state(uri).spec = linted.spec
+            state.spec = linted.spec
         lines = split_lines(text)
         diagnostics = [self._lsp_diagnostic(lines, item) for item in linted.diagnostics]
         self.text_document_publish_diagnostics(lsp.PublishDiagnosticsParams(uri, diagnostics, version))
+        # then index the text, so the next hover or completion need not wait for it
+        index = await asyncio.to_thread(SpecDocument, text)
+        if state.index_text is not text:
+            state.index, state.index_text = index, text
 
     def _lsp_diagnostic(self, lines: list[str], item: features.EditorDiagnostic) -> lsp.Diagnostic:
         d = item.diagnostic
