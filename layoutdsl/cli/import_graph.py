@@ -103,7 +103,7 @@ def run(args: argparse.Namespace, fmt: str, text: str | None, print_diagnostics)
     from dataclasses import replace
 
     spec = replace(spec, path=f"{name}.lay" if to_stdout else args.output)
-    output = format_spec(spec, fill_sizes=True)  # the chosen boundary is written too
+    output = format_spec(spec)
     lint_errors = [d for d in lint_source(Source(spec.path, output))[1] if d.is_error]
     if lint_errors:
         print_diagnostics(lint_errors, {spec.path: Source(spec.path, output)}, style)

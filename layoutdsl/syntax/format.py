@@ -100,9 +100,10 @@ def format_lines(
 ) -> list[tuple[str, int | None]]:
     """The canonical lines, each with the source line it came from (None for new lines).
 
-    A sizeless room (`R1 R CLASSROOM`) stays sizeless and a boundary the tool chose is left
-    out, unless `fill_sizes`: then both are written with the numbers the size model gave
-    (the spec must have been through layoutdsl.sizes.resolve)."""
+    A sizeless room (`R1 R CLASSROOM`) stays sizeless unless `fill_sizes`: then it is written
+    with the numbers the size model gave (the spec must have been through
+    layoutdsl.sizes.resolve). A boundary is written whenever the spec has one, chosen by
+    the tool or not: a spec without a `boundary` section gets one only from resolving."""
     n = format_number
     headers = header_lines or {}
     sections: list[list[tuple[str, int | None]]] = []
@@ -136,7 +137,7 @@ def format_lines(
         ])  # fmt: skip
 
     boundary = spec.boundary
-    if boundary is not None and (fill_sizes or not boundary.chosen):
+    if boundary is not None:
         lines = [header("boundary"), (f"{n(boundary.w)} {n(boundary.h)}", _line(boundary))]
         lines += [(f"{o.id} {n(o.x)} {n(o.y)} {n(o.w)} {n(o.h)}", _line(o)) for o in boundary.obstacles]
         sections.append(lines)
