@@ -9,12 +9,10 @@ from __future__ import annotations
 
 import argparse
 import difflib
-import json
 import re
-import sys
 from importlib import resources
 
-from layoutdsl.cli.output import add_command, add_output_arguments
+from layoutdsl.cli.output import Output, add_command, add_output_arguments
 from layoutdsl.diagnostics import exitcodes
 
 _CODE = re.compile(r"[EWI]\d{3}")  # I: info notes (layoutdsl.sizes.resolve)
@@ -60,45 +58,35 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     parser = add_command(
         subparsers, "explain",
         help="print what a diagnostic code means and how to fix it",
-        description="Print the documentation page of a diagnostic code (E201, W301, ...): what it "
-        "reports, why that is a problem, and an example. Without CODE, list every code.",
-        examples=[
-            ("the page of one code", "layoutdsl explain E102"),
-            ("every code and its title", "layoutdsl explain"),
-            ("a page as JSON: {code, severity, title, page}", "layoutdsl explain W906 --format json"),
-        ],
+        description="Print the documentation page of a diagnostic code (E201, W301, I441, ...): "
+        "what it reports, why that is a problem, and an example; the same page the docs site "
+        "shows. Without CODE, list every code with its severity and title.",
+        examples=[("what E102 means", "layoutdsl explain E102"),
+                  ("every code and its title", "layoutdsl explain"),
+                  ("the page as a JSON object, for tools", "layoutdsl explain W906 --format json")],
     )  # fmt: skip
     parser.add_argument("code", nargs="?", metavar="CODE", help="a code such as E102 (case does not matter)")
-    add_output_arguments(parser)  # -q/-v/--format as every command (the page is printed whatever the level)
+    add_output_arguments(parser)
     parser.set_defaults(run=run)
     return parser
 
 
 def run(args: argparse.Namespace) -> int:
     """Print one page (exit 0), the list of codes (exit 0), or a suggestion (exit 2)."""
+    out = Output("explain", args)
     known = pages()
     if args.code is None:
-        if args.format == "json":
-            rows = [{"code": c, "severity": severity(p), "title": title(p)} for c, p in known.items()]
-            print(json.dumps(rows, indent=2, ensure_ascii=False))
-        else:
-            for code, page in known.items():
-                print(f"{code}  {severity(page):<7}  {title(page)}")
-        return exitcodes.OK
+        rows = [{"code": c, "severity": severity(p), "title": title(p)} for c, p in known.items()]
+        if not out.json:
+            out.product("".join(f"{r['code']}  {r['severity']:<7}  {r['title']}\n" for r in rows))
+        return out.finish(exitcodes.OK, codes=rows)
     code = args.code.strip().upper()
     if code not in known:
         near = suggestion(code, list(known))
-        hint = f"; did you mean `{near}`?" if near else ""
-        if args.format == "json":
-            print(json.dumps({"status": exitcodes.STATUS.get(exitcodes.USAGE, "error"), "code": args.code,
-                              "error": f"no diagnostic code `{args.code}`", "suggestion": near}))
-        print(f"layoutdsl explain: no diagnostic code `{args.code}`{hint}\n"
-              "  `layoutdsl explain` lists every code", file=sys.stderr)
-        return exitcodes.USAGE
+        hint = f"; did you mean `{near}`?" if near else "; `layoutdsl explain` lists every code"
+        status = out.error(f"no diagnostic code `{args.code}`{hint}")
+        return out.finish(status, code=args.code, suggestion=near)
     page = known[code]
-    if args.format == "json":
-        print(json.dumps({"code": code, "severity": severity(page), "title": title(page), "page": page},
-                         indent=2, ensure_ascii=False))
-    else:
-        sys.stdout.write(page if page.endswith("\n") else page + "\n")
-    return exitcodes.OK
+    if not out.json:
+        out.product(page if page.endswith("\n") else page + "\n")
+    return out.finish(exitcodes.OK, code=code, severity=severity(page), title=title(page), page=page)

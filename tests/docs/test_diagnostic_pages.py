@@ -59,7 +59,7 @@ def test_explain_prints_the_page(capsys) -> None:
 def test_explain_a_wrong_code_suggests_one_and_exits_2(capsys) -> None:
     assert main(["explain", "W102"]) == 2
     captured = capsys.readouterr()
-    assert "no diagnostic code `W102`; did you mean `E102`?" in captured.err
+    assert captured.err == "layoutdsl explain: error: no diagnostic code `W102`; did you mean `E102`?\n"
     assert captured.out == ""
     assert suggestion("E2O1", list(pages())) == "E201"
     assert suggestion("nonsense-words", list(pages())) is None
@@ -68,12 +68,18 @@ def test_explain_a_wrong_code_suggests_one_and_exits_2(capsys) -> None:
 def test_explain_json_and_listing(capsys) -> None:
     assert main(["explain", "W301", "--format", "json"]) == 0
     record = json.loads(capsys.readouterr().out)
+    assert record["command"] == "explain" and record["status"] == "ok" and record["exit_code"] == 0
     assert record["code"] == "W301" and record["severity"] == "warning"
     assert record["title"] == load_all_codes()["W301"].title and record["page"] == pages()["W301"]
     assert main(["explain"]) == 0
     listed = capsys.readouterr().out.splitlines()
     assert len(listed) == len(pages()) and listed[0].startswith("E001  error")
     assert title(pages()["E001"]) in listed[0]
+    assert main(["explain", "--format", "json"]) == 0
+    assert len(json.loads(capsys.readouterr().out)["codes"]) == len(pages())
+    assert main(["explain", "nonsense", "--format", "json"]) == 2
+    failed = json.loads(capsys.readouterr().out)
+    assert failed["status"] == "usage_or_io_error" and failed["suggestion"] is None and failed["errors"]
 
 
 def test_pages_ship_in_the_wheel_as_package_data() -> None:
