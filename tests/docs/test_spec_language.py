@@ -35,3 +35,24 @@ def test_every_setting_is_in_the_table() -> None:
     table = PAGE.read_text(encoding="utf-8").split("## `settings`", 1)[1].split("\n## ", 1)[0]
     documented = set(re.findall(r"^\| `(\w+)` \|", table, re.M))
     assert set(SETTING_KEYS) <= documented, set(SETTING_KEYS) - documented
+
+
+def test_the_settings_table_gives_the_real_defaults() -> None:
+    from layoutdsl.syntax.ast import Settings
+
+    table = PAGE.read_text(encoding="utf-8").split("## `settings`", 1)[1].split("\n## ", 1)[0]
+    rows = dict(re.findall(r"^\| `(\w+)` \| ([^|]+?) \|", table, re.M))
+    defaults = Settings()
+    checked = 0
+    for key, written in rows.items():
+        if key == "name":
+            continue  # the file's stem: not a constant
+        actual = getattr(defaults, key)
+        if actual is None:
+            assert written == "none", key
+        elif isinstance(actual, str):
+            assert written == actual, key
+        else:
+            assert float(written) == actual, key
+        checked += 1
+    assert checked >= 10
