@@ -27,10 +27,11 @@ STEP = 0.1
 
 
 def choose_boundary(rooms: Iterable, arms: Iterable = (), *, fill: float = FILL,
-                    aspect: float = ASPECT) -> tuple[float, float]:  # fmt: skip
-    """(w, h) in metres, w >= h, for rooms (anything with target_w, target_h) and the second
-    rectangles of L-rooms (`arms`, the same attributes). Raises ValueError for no rooms or
-    a size that is not a positive finite number."""
+                    aspect: float = ASPECT, contains: Iterable[tuple[float, float]] = ()) -> tuple[float, float]:  # fmt: skip
+    """(w, h) in metres for rooms (anything with target_w, target_h) and the second
+    rectangles of L-rooms (`arms`, the same attributes); w >= h unless points of `contains`
+    (the spec's positions, connections and hints, in the boundary's frame) need a side
+    longer. Raises ValueError for no rooms or a size that is not a positive finite number."""
     if not 0 < fill <= 1:
         raise ValueError(f"fill must be in (0, 1], got {fill!r}")
     if not aspect >= 1:
@@ -47,6 +48,10 @@ def choose_boundary(rooms: Iterable, arms: Iterable = (), *, fill: float = FILL,
     short_side = area / long_side
     long_side = max(long_side, max(max(w, h) for w, h in rects))
     short_side = max(short_side, max(min(w, h) for w, h in rects))
+    points = list(contains)
+    if points:  # every point the spec places must lie inside, with a step to spare
+        long_side = max(long_side, max(x for x, _ in points) + STEP)
+        short_side = max(short_side, max(y for _, y in points) + STEP)
     return _round_up(long_side), _round_up(short_side)
 
 

@@ -103,7 +103,7 @@ def resolve_spec(spec: Spec, model: SizeModel | None = None) -> tuple[Spec, list
         ))  # fmt: skip
     if spec.boundary is None:
         try:
-            w, h = choose_boundary(spec.rooms, spec.arms)
+            w, h = choose_boundary(spec.rooms, spec.arms, contains=placed_points(spec))
         except ValueError:
             return spec, diagnostics  # no rooms (E017 says so) or broken sizes (the checks say so)
         spec = replace(spec, boundary=Boundary(w, h, chosen=True))
@@ -116,6 +116,16 @@ def resolve_spec(spec: Spec, model: SizeModel | None = None) -> tuple[Spec, list
                    f"{ASPECT:g} times as wide as high, every room fitting",),
         ))  # fmt: skip
     return spec, diagnostics
+
+
+def placed_points(spec: Spec) -> list[tuple[float, float]]:
+    """The points a spec places in the boundary's frame: positions, both points of each
+    connection, the far corner of each hint. A chosen boundary must contain them."""
+    points = [(p.x, p.y) for p in spec.positions]
+    for c in spec.connections:
+        points += [(c.x1, c.y1), (c.x2, c.y2)]
+    points += [(h.x + h.w, h.y + h.h) for h in spec.hints]
+    return points
 
 
 def _fields(size) -> dict[str, float]:

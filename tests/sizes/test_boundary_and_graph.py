@@ -98,3 +98,15 @@ def test_spec_from_graph_refuses_an_empty_graph_and_an_unknown_kind() -> None:
 
     with pytest.raises(ModelError):
         spec_from_graph(school_graph(), kind="castle")
+
+
+def test_a_chosen_boundary_contains_the_points_the_spec_places() -> None:
+    from layoutdsl.api import lint_source
+    from layoutdsl.diagnostics.source import Source
+
+    text = ("rooms\nR1 R CLASSROOM\nC1 C\n\nadjacencies\nR1 C1 0.9 e\n\n"
+            "positions\nC1 3 17\n\nhints\nR1 40 0 5 5\n")  # fmt: skip
+    spec, diagnostics = lint_source(Source("p.lay", text))
+    assert not [d for d in diagnostics if d.is_error], diagnostics
+    assert spec.boundary.w >= 45 and spec.boundary.h >= 17
+    assert choose_boundary([room(2, 2)], contains=[(30, 12)]) == (30.1, 12.1)
