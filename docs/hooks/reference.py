@@ -19,8 +19,9 @@ ROOT = Path(__file__).resolve().parents[2]
 SNAPSHOTS = ROOT / "tests" / "diagnostics"
 FAMILIES = (
     ("E0", "Syntax"), ("E1", "Names and references"), ("E2", "Geometry"), ("W3", "Spec warnings"),
-    ("E4", "Building XML import: errors"), ("W4", "Building XML import: warnings"),
+    ("E4", "Import (building XML, room graphs) and size model: errors"), ("W4", "Building XML import: warnings"),
     ("E9", "Solving: errors"), ("W9", "Solving: warnings"),
+    ("I4", "Notes: sizes and boundary the tool chose"),
 )  # fmt: skip
 
 
