@@ -62,11 +62,14 @@ def _fit(args: argparse.Namespace, out: Output) -> int:
     if not folder.is_dir():
         return out.finish(out.error(f"cannot read `{folder}`: not a folder", kind="io", path=str(folder)))
     out.reading(str(folder))
+    skipped: list[tuple[str, str]] = []
     try:
         with out.timed("fit"):
-            model = fit_folder(folder)
+            model = fit_folder(folder, skipped)
     except ValueError as error:
         return out.finish(out.error(str(error)))
+    for name, problem in skipped:
+        out.warning(f"skipped {name}: {problem}")
     text = model.dumps()
     if args.output == "-":
         out.product(text)
@@ -78,7 +81,7 @@ def _fit(args: argparse.Namespace, out: Output) -> int:
         out.wrote(args.output)
     kinds = {kind: {"plans": len(m.plans), "rooms": m.overall.rooms} for kind, m in model.kinds.items()}
     out.progress("fitted " + ", ".join(f"{k}: {v['plans']} plans, {v['rooms']} rooms" for k, v in kinds.items()))
-    return out.finish(exitcodes.OK, kinds=kinds)
+    return out.finish(exitcodes.OK, kinds=kinds, skipped=[name for name, _ in skipped])
 
 
 def _show(args: argparse.Namespace, out: Output) -> int:

@@ -91,14 +91,18 @@ def measure_plan(path: str | Path) -> tuple[PlanSample | None, list[str]]:
     return PlanSample(Path(path).name, kind, rooms, tuple(adjacencies), boundary), []
 
 
-def fit_model(plans: Iterable[str | Path], corpus: str = "") -> SizeModel:
-    """Fit the model on these plan files (see the module doc). Raises ValueError when none
-    of them imports."""
+def fit_model(
+    plans: Iterable[str | Path], corpus: str = "", skipped: list[tuple[str, str]] | None = None
+) -> SizeModel:
+    """Fit the model on these plan files (see the module doc). A plan that does not import
+    is left out, and (file name, first problem) appended to `skipped` when it is given.
+    Raises ValueError when no plan imports."""
     samples: list[PlanSample] = []
     for path in sorted(Path(p) for p in plans):
         sample, problems = measure_plan(path)
         if sample is None:
-            print(f"layoutdsl sizes fit: skipping {path.name}: {problems[0]}", file=sys.stderr)
+            if skipped is not None:
+                skipped.append((path.name, problems[0]))
             continue
         samples.append(sample)
     if not samples:
@@ -109,13 +113,13 @@ def fit_model(plans: Iterable[str | Path], corpus: str = "") -> SizeModel:
     return SizeModel({kind: fit_kind(kind, found) for kind, found in sorted(by_kind.items())}, corpus)
 
 
-def fit_folder(folder: str | Path) -> SizeModel:
-    """Fit on every `*.xml` plan in a folder."""
+def fit_folder(folder: str | Path, skipped: list[tuple[str, str]] | None = None) -> SizeModel:
+    """Fit on every `*.xml` plan in a folder (see fit_model for `skipped`)."""
     folder = Path(folder)
     plans = sorted(folder.glob("*.xml"))
     if not plans:
         raise ValueError(f"no *.xml plan in {folder}")
-    return fit_model(plans, corpus=folder.name)
+    return fit_model(plans, corpus=folder.name, skipped=skipped)
 
 
 def fit_kind(kind: str, plans: list[PlanSample]) -> KindModel:
@@ -210,11 +214,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Fit and write; 0 on success, 2 when the folder has no plan or the file cannot be written."""
+    skipped: list[tuple[str, str]] = []
     try:
-        model = fit_folder(args.folder)
+        model = fit_folder(args.folder, skipped)
     except ValueError as error:
         print(f"layoutdsl sizes fit: error: {error}", file=sys.stderr)
         return 2
+    for name, problem in skipped:
+        print(f"layoutdsl sizes fit: warning: skipped {name}: {problem}", file=sys.stderr)
     text = model.dumps()
     if args.output == "-":
         sys.stdout.write(text)
