@@ -261,16 +261,41 @@ def _read_json(text: str, filename: str):
     except json.JSONDecodeError as error:
         span = Span(error.lineno, error.colno, error.lineno, error.colno + 1)
         return None, [_error(GRAPH_UNREADABLE, f"not valid JSON: {error.msg}", filename, span, "here")], None
+    help_text = "node-link data is {\"nodes\": [{\"id\": ...}, ...], \"links\": [{\"source\": ..., \"target\": ...}, ...]}"
     if not isinstance(data, dict) or not isinstance(data.get("nodes"), list):
         return None, [_error(GRAPH_UNREADABLE, "not networkx node-link data (no `nodes` list)", filename, _FIRST,
-                             "no `nodes`", help='write the graph with networkx.node_link_data(graph, edges="links")')], None  # fmt: skip
-    edges_key = "links" if "links" in data else "edges"
-    try:
-        graph = nx.node_link_graph(data, edges=edges_key)
-    except (nx.NetworkXError, KeyError, TypeError, ValueError) as error:
-        return None, [_error(GRAPH_UNREADABLE, f"not networkx node-link data: {error}", filename, _FIRST,
-                             "unreadable graph")], None  # fmt: skip
+                             "no `nodes`", help=help_text)], None  # fmt: skip
     locate = _text_locator(text, lambda node: [rf'"id"\s*:\s*{re.escape(json.dumps(node))}'])
+    # Read by hand rather than with networkx.node_link_graph, whose keyword for the links
+    # changed in networkx 3.4: the same file reads the same with any networkx.
+    graph = nx.Graph()
+    diagnostics: list[Diagnostic] = []
+    for node in data["nodes"]:
+        if not isinstance(node, dict) or "id" not in node or isinstance(node["id"], (dict, list)):
+            return None, [_error(GRAPH_UNREADABLE, f"a node without a plain `id`: {json.dumps(node)[:60]}",
+                                 filename, _FIRST, "no id", help=help_text)], None  # fmt: skip
+        if node["id"] in graph:
+            return None, [_error(GRAPH_UNREADABLE, f"node `{node['id']}` is given twice", filename,
+                                 locate(node["id"]), "second node with this id")], None  # fmt: skip
+        graph.add_node(node["id"], **{k: v for k, v in node.items() if k != "id"})
+    links = data.get("links", data.get("edges", []))
+    if not isinstance(links, list):
+        return None, [_error(GRAPH_UNREADABLE, "`links` is not a list", filename, _FIRST, "not a list",
+                             help=help_text)], None  # fmt: skip
+    for link in links:
+        if not isinstance(link, dict) or "source" not in link or "target" not in link:
+            return None, [_error(GRAPH_UNREADABLE, f"a link without `source` and `target`: {json.dumps(link)[:60]}",
+                                 filename, _FIRST, "not a link", help=help_text)], None  # fmt: skip
+        a, b = link["source"], link["target"]
+        missing = next((n for n in (a, b) if isinstance(n, (dict, list)) or n not in graph), None)
+        if missing is not None:
+            span = _text_locator(text, lambda n: [rf'"(?:source|target)"\s*:\s*{re.escape(json.dumps(n))}'])(missing)
+            diagnostics.append(_error(GRAPH_UNREADABLE, f"a link names node `{missing}`, which is not in `nodes`",
+                                      filename, span, "no such node"))  # fmt: skip
+            continue
+        graph.add_edge(a, b, **{k: v for k, v in link.items() if k not in ("source", "target")})
+    if diagnostics:
+        return None, diagnostics, None
     return _normalized(graph, filename, locate)
 
 

@@ -103,7 +103,11 @@ def test_node_link_json_and_graphml_give_the_same_spec(tmp_path: Path) -> None:
     named.edges[first]["door"] = 1.2
     named.edges[first]["kind"] = "i"
     json_path = tmp_path / "g.json"
-    json_path.write_text(json.dumps(nx.node_link_data(named, edges="links")))
+    json_path.write_text(json.dumps({
+        "directed": False, "multigraph": False, "graph": {},
+        "nodes": [{"id": n, **named.nodes[n]} for n in named.nodes],
+        "links": [{"source": a, "target": b, **data} for a, b, data in named.edges(data=True)],
+    }))  # what networkx.node_link_data(named, edges="links") writes (networkx >= 3.4)
     graphml_path = tmp_path / "g.graphml"
     nx.write_graphml(named, graphml_path)
     from_json, d1 = read_graph(json_path)
@@ -179,6 +183,9 @@ def test_unknown_rtype_and_self_loop_in_json_are_located() -> None:
 def test_bad_json_and_graphml_are_e430() -> None:
     assert read_graph("g.json", text="{nodes")[1][0].code == "E430"
     assert read_graph("g.json", text='{"a": 1}')[1][0].code == "E430"
+    assert read_graph("g.json", text='{"nodes": [{"x": 1}]}')[1][0].code == "E430"
+    no_node = read_graph("g.json", text='{"nodes": [{"id": 1}],\n "links": [{"source": 1, "target": 2}]}')[1]
+    assert [(d.code, d.span.line) for d in no_node] == [("E430", 2)] and "node `2`" in no_node[0].message
     assert read_graph("g.graphml", text="<graphml><node")[1][0].code == "E430"
 
 
