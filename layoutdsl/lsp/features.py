@@ -160,6 +160,58 @@ def references(document: SpecDocument, line: int, column: int, include_declarati
             if include_declaration or not u.is_definition]  # fmt: skip
 
 
+class RenameError(ValueError):
+    """A rename the spec cannot take (the message says why, for the editor to show)."""
+
+
+def rename(document: SpecDocument, line: int, column: int, new_name: str) -> list[Range]:
+    """Where to write `new_name` to rename the room id under the cursor: its definition and
+    every use. Raises RenameError for a name that is not an id or is taken."""
+    use = document.room_use_at(line, column)
+    if use is None:
+        raise RenameError("not a room id")
+    if not new_name or any(ch.isspace() for ch in new_name) or new_name.startswith("#") or is_number(new_name):
+        raise RenameError(f"`{new_name}` is not an id: one word, not a number, not starting with `#`")
+    if "=" in new_name or new_name in SECTIONS:
+        raise RenameError(f"`{new_name}` would read as a weight or a section name")
+    if new_name != use.word.text and new_name in document.definitions:
+        raise RenameError(f"a room `{new_name}` is already defined on line {document.definitions[new_name].line + 1}")
+    return [Range.of_word(u.word) for u in document.uses_of(use.word.text)]
+
+
+@dataclass(frozen=True, slots=True)
+class Symbol:
+    """An outline entry: a section (with its rooms, for `rooms`)."""
+
+    name: str
+    kind: str
+    """`section` or `room`."""
+    range: Range
+    detail: str = ""
+    children: tuple[Symbol, ...] = ()
+
+
+def outline(document: SpecDocument) -> list[Symbol]:
+    """The sections in order, each spanning its lines; `rooms` lists its rooms."""
+    headers = [line for line in document.lines if line.is_header]
+    symbols = []
+    for index, header in enumerate(headers):
+        last = headers[index + 1].number - 1 if index + 1 < len(headers) else len(document.lines) - 1
+        while last > header.number and not document.lines[last].content.strip():
+            last -= 1
+        children: tuple[Symbol, ...] = ()
+        if header.section == "rooms":
+            children = tuple(
+                Symbol(room_id, "room", Range(word.line, 0, word.line, len(document.lines[word.line].text)),
+                       f"{document.room_entry(room_id).rtype or ''} {document.room_entry(room_id).label}".strip())
+                for room_id, word in document.definitions.items()
+                if header.number < word.line <= last
+            )  # fmt: skip
+        span = Range(header.number, 0, last, len(document.lines[last].text))
+        symbols.append(Symbol(header.section, "section", span, children=children))
+    return symbols
+
+
 # ----------------------------------------------------------------------------- hover
 
 _SIZE_ROWS = (("width", 0), ("height", 3))

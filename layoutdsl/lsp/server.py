@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from urllib.parse import unquote, urlparse
 
 from lsprotocol import types as lsp
+from pygls.exceptions import JsonRpcInvalidParams
 from pygls.lsp.server import LanguageServer
 
 from layoutdsl import __version__
@@ -215,6 +216,34 @@ def build_server() -> SpecLanguageServer:
         index, lines = ls.index(params.text_document.uri)
         found = features.references(index, *ls.from_client(lines, params.position), params.context.include_declaration)
         return [lsp.Location(params.text_document.uri, ls.range_to_client(lines, rng)) for rng in found]
+
+    @ls.feature(lsp.TEXT_DOCUMENT_PREPARE_RENAME)
+    def prepare_rename(ls: SpecLanguageServer, params: lsp.PrepareRenameParams) -> lsp.Range | None:
+        index, lines = ls.index(params.text_document.uri)
+        use = index.room_use_at(*ls.from_client(lines, params.position))
+        return ls.range_to_client(lines, features.Range.of_word(use.word)) if use else None
+
+    @ls.feature(lsp.TEXT_DOCUMENT_RENAME)
+    def rename(ls: SpecLanguageServer, params: lsp.RenameParams) -> lsp.WorkspaceEdit:
+        index, lines = ls.index(params.text_document.uri)
+        try:
+            found = features.rename(index, *ls.from_client(lines, params.position), params.new_name)
+        except features.RenameError as error:
+            raise JsonRpcInvalidParams(str(error)) from None
+        edits = [lsp.TextEdit(ls.range_to_client(lines, rng), params.new_name) for rng in found]
+        return lsp.WorkspaceEdit(changes={params.text_document.uri: edits})
+
+    @ls.feature(lsp.TEXT_DOCUMENT_DOCUMENT_SYMBOL)
+    def document_symbol(ls: SpecLanguageServer, params: lsp.DocumentSymbolParams) -> list[lsp.DocumentSymbol]:
+        index, lines = ls.index(params.text_document.uri)
+
+        def convert(symbol: features.Symbol) -> lsp.DocumentSymbol:
+            rng = ls.range_to_client(lines, symbol.range)
+            kind = lsp.SymbolKind.Namespace if symbol.kind == "section" else lsp.SymbolKind.Variable
+            return lsp.DocumentSymbol(name=symbol.name, kind=kind, range=rng, selection_range=rng,
+                                      detail=symbol.detail or None, children=[convert(c) for c in symbol.children])  # fmt: skip
+
+        return [convert(symbol) for symbol in features.outline(index)]
 
     @ls.feature(lsp.TEXT_DOCUMENT_COMPLETION, lsp.CompletionOptions(trigger_characters=[" "]))
     def completion(ls: SpecLanguageServer, params: lsp.CompletionParams) -> lsp.CompletionList:

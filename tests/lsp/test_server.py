@@ -335,3 +335,28 @@ async def test_a_sizeless_room_hovers_with_the_size_models_sizes(client: Languag
     widths = re.search(r"\| width \(m\) \| ([\d.]+) \| ([\d.]+) \| ([\d.]+) \|", hover)
     low, high, target = map(float, widths.groups())
     assert 0 < low <= target <= high
+
+
+async def test_rename_a_room_everywhere(client: LanguageClient) -> None:
+    uri = await open_doc(client, "rename", SPEC)
+    where = position_of(SPEC, "hall 1.2")
+    ready = await client.text_document_prepare_rename_async(lsp.PrepareRenameParams(doc(uri), where))
+    assert ready == lsp.Range(where, lsp.Position(where.line, where.character + 4))
+    edit = await client.text_document_rename_async(lsp.RenameParams(doc(uri), where, "corridor"))
+    renamed = apply_edits(SPEC, edit.changes[uri])
+    assert renamed == re.sub(r"\bhall\b", "corridor", SPEC)  # the label HALL is not an id
+    # a name that is taken, or not an id, is refused with the reason
+    for taken, reason in (("kitchen", "already defined on line 4"), ("4.5", "not an id")):
+        with pytest.raises(Exception, match=reason):
+            await client.text_document_rename_async(lsp.RenameParams(doc(uri), where, taken))
+
+
+async def test_the_outline_lists_sections_and_rooms(client: LanguageClient) -> None:
+    uri = await open_doc(client, "outline", SPEC)
+    symbols = await client.text_document_document_symbol_async(lsp.DocumentSymbolParams(doc(uri)))
+    assert [s.name for s in symbols] == ["rooms", "boundary", "adjacencies", "settings"]
+    rooms = symbols[0]
+    assert [(c.name, c.detail) for c in rooms.children] == [
+        ("hall", "C HALL"), ("kitchen", "R KITCHEN"), ("office", "R OFFICE"), ("door", "E ENTRANCE")]
+    assert (rooms.range.start.line, rooms.range.end.line) == (1, 5)  # the header to the last room
+    assert [c.range.start.line for c in rooms.children] == [2, 3, 4, 5]
