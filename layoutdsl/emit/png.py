@@ -491,7 +491,9 @@ def drawing(layout: Layout, px_per_m: float | None = None, robot_room: str | Non
     robot_x, robot_y = frame.px(*start.centre)
     robot_r = max(5.0, ROBOT_RADIUS_M * scale)
     for placed in layout.rooms:
-        room = max(placed.parts, key=lambda part: part.w * part.h)  # the label goes in the larger arm
+        # the label goes in the larger rectangle, the one whose centre PlacedRoom.centre (and
+        # so the robot's start) is: the same tie-break when both are as large
+        room = max(placed.parts, key=lambda part: (part.w * part.h, -part.x, -part.y))
         left, top = frame.px(room.x, room.y2)
         right, bottom = frame.px(room.x2, room.y)
         below: tuple[float, float] | None = None

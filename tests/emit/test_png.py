@@ -251,3 +251,18 @@ def test_the_area_unit_is_painted_as_a_raised_two() -> None:
     dark_rows = [y for y in range(60) if any(painted.getpixel((x, y)) < 128 for x in range(130, 200))]
     digits_rows = [y for y in range(60) if any(painted.getpixel((x, y)) < 128 for x in range(60, 100))]
     assert min(dark_rows) < min(digits_rows)  # the `2` is raised above the digits' top
+
+
+def test_the_robot_room_label_sits_in_the_rectangle_the_robot_stands_in() -> None:
+    # an L-room whose two rectangles are as large: the label and the robot pick the same one
+    from layoutdsl.layout import PlacedRoom
+
+    base = load_case(SMALL)
+    l_room = PlacedRoom("E9", "HALL", "E", 0.0, 0.0, 4.0, 2.3, arm=(4.0, 0.0, 4.0, 2.3))
+    layout = replace(base, rooms=(l_room,), portals=(), obstacles=())
+    picture = drawing(layout)
+    (disc,) = [i for i in picture.items if isinstance(i, png.Circle) and i.tag == "robot E9"]
+    boxes = [i for i in picture.items if i.tag == "room E9"]
+    (home,) = [b for b in boxes if b.x0 < disc.x < b.x1]
+    for text in _tagged(picture, "label E9"):
+        assert home.x0 < text.x < home.x1
