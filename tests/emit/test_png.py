@@ -258,7 +258,7 @@ def test_the_robot_room_label_sits_in_the_rectangle_the_robot_stands_in() -> Non
     from layoutdsl.layout import PlacedRoom
 
     base = load_case(SMALL)
-    l_room = PlacedRoom("E9", "HALL", "E", 0.0, 0.0, 4.0, 2.3, arm=(4.0, 0.0, 4.0, 2.3))
+    l_room = PlacedRoom("E9", "HALL", "E", 4.0, 0.0, 4.0, 2.3, arm=(0.0, 0.0, 4.0, 2.3))  # the arm on the left
     layout = replace(base, rooms=(l_room,), portals=(), obstacles=())
     picture = drawing(layout)
     (disc,) = [i for i in picture.items if isinstance(i, png.Circle) and i.tag == "robot E9"]
