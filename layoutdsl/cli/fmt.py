@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from layoutdsl.cli.lint import read_input
-from layoutdsl.cli.output import Output, add_command, add_output_arguments, expand_specs
+from layoutdsl.cli.output import Output, add_command, add_output_arguments, expand_specs, plural
 from layoutdsl.diagnostics import exitcodes, has_errors
 from layoutdsl.diagnostics.filekind import wrong_kind_for_spec
 from layoutdsl.emit.atomic import write_text_atomic
@@ -97,7 +97,7 @@ def run(args: argparse.Namespace) -> int:
             out.product(text)
     if (args.check or args.write) and "-" not in paths:  # stdout may hold a formatted spec
         verb = "would reformat" if args.check else "reformatted"
-        out.summary(f"{len(changed)} files {verb}, {len(unchanged)} already canonical")
+        out.summary(f"{plural(len(changed), 'file')} {verb}, {len(unchanged)} already canonical")
     fields = {"changed": changed, "unchanged": unchanged}
     if formatted:
         fields["formatted"] = formatted

@@ -6,7 +6,7 @@ import argparse
 import sys
 
 from layoutdsl.api import lint_source, read_source
-from layoutdsl.cli.output import Output, add_command, add_output_arguments, expand_specs
+from layoutdsl.cli.output import Output, add_command, add_output_arguments, expand_specs, plural
 from layoutdsl.diagnostics import exitcodes
 from layoutdsl.diagnostics.filekind import wrong_kind_for_spec
 from layoutdsl.diagnostics.render import summary
@@ -81,10 +81,11 @@ def run(args: argparse.Namespace) -> int:
     # never "no problems found" about files that were not read
     line = summary(diagnostics)
     if unreadable:
-        line = (f"{line} in the {len(sources)} files read" if diagnostics else f"checked {len(sources)} files")
+        line = (f"{line} in the {plural(len(sources), 'file')} read" if diagnostics
+                else f"checked {plural(len(sources), 'file')}")
         line += f"; {unreadable} could not be read"
     elif out.verbose:
-        line += f" in {len(sources)} files"
+        line += f" in {plural(len(sources), 'file')}"
     out.summary(line)
     if unreadable:
         code = exitcodes.USAGE

@@ -201,6 +201,11 @@ def expand_specs(paths: Iterable[str], suffix: str = ".lay") -> tuple[list[str],
     return files, empty
 
 
+def plural(count: int, noun: str) -> str:
+    """`1 file`, `2 files`: summaries count things in words."""
+    return f"{count} {noun}{'' if count == 1 else 's'}"
+
+
 def ensure_parent(path: str | Path) -> None:
     """Create the folder a file is written into (`-o out/x.lay` creates `out/`)."""
     Path(path).parent.mkdir(parents=True, exist_ok=True)

@@ -172,7 +172,7 @@ def test_lint_counts_what_it_read_and_what_it_could_not(tmp_path, capsys):
     good.write_text(GOOD)
     code, out, err = run_main(capsys, "lint", str(good), str(tmp_path / "gone.lay"))
     assert code == 2 and "cannot read" in err
-    assert out == "checked 1 files; 1 could not be read\n"
+    assert out == "checked 1 file; 1 could not be read\n"
 
 
 # ----------------------------------------------------------------- folders
@@ -193,7 +193,7 @@ def test_lint_and_fmt_take_folders_recursively(tmp_path, capsys):
     (tmp_path / "a" / "b" / "two.lay").write_text(GOOD.replace("R0 R1 0.9", "R0 R1 .9"))
     code, out, err = run_main(capsys, "fmt", "--check", str(tmp_path / "a"))
     assert code == 1 and err == f"would reformat {tmp_path / 'a' / 'b' / 'two.lay'}\n"
-    assert out == "1 files would reformat, 1 already canonical\n"
+    assert out == "1 file would reformat, 1 already canonical\n"
     code, out, err = run_main(capsys, "fmt", "--write", str(tmp_path / "a"))
     assert code == 0 and run_main(capsys, "fmt", "--check", str(tmp_path / "a"))[0] == 0
 
