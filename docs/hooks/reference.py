@@ -74,11 +74,16 @@ def code_pages() -> dict[str, str]:
         "Every code layoutdsl can report, one page each (as ruff has per rule). A code is never",
         "reused. `layoutdsl explain CODE` prints the same page in a terminal.",
     ]
-    for prefix, heading in FAMILIES:
-        codes = [code for code in found if code.startswith(prefix)]
+    named = {prefix for prefix, _ in FAMILIES}
+    for prefix, heading in FAMILIES + (("", "Other codes"),):
+        if prefix:
+            codes = [code for code in found if code.startswith(prefix)]
+        else:  # a family added to the code base before it is named above is still listed
+            codes = [code for code in found if code[:2] not in named]
         if not codes:
             continue
-        index += ["", f"## {heading} ({prefix}xx)", "", "| code | severity | title |", "|---|---|---|"]
+        title_line = f"## {heading} ({prefix}xx)" if prefix else f"## {heading}"
+        index += ["", title_line, "", "| code | severity | title |", "|---|---|---|"]
         index += [f"| [{c}]({c}.md) | {severity(found[c])} | {title(found[c])} |" for c in codes]
     for code, page in found.items():
         extra = snapshot(code)

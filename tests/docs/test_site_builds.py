@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -25,3 +26,11 @@ def test_mkdocs_build_strict(tmp_path) -> None:
         assert f"layoutdsl {command}" in cli, command
     assert "--stdin-filename" in cli and "--solution-limit" in cli
     assert (site / "reference" / "codes" / "E901" / "index.html").is_file()
+    # the codes index links every code's page, whatever its family
+    from layoutdsl.cli.explain import pages
+
+    index = (site / "reference" / "codes" / "index.html").read_text(encoding="utf-8")
+    linked = set(re.findall(r'href="([EWI]\d{3})/"', index))
+    assert linked == set(pages())
+    for code in pages():
+        assert (site / "reference" / "codes" / code / "index.html").is_file(), code
