@@ -13,7 +13,16 @@
 
 from __future__ import annotations
 
-from layoutdsl.sizes.graph import spec_from_graph
 from layoutdsl.sizes.model import ModelError, RoomSize, SizeModel, load_model
 
 __all__ = ["ModelError", "RoomSize", "SizeModel", "load_model", "spec_from_graph"]
+
+
+def __getattr__(name: str):
+    # spec_from_graph needs networkx, which `lint` (through sizes.resolve) never uses:
+    # import it on first use, so linting a spec does not pay for it
+    if name == "spec_from_graph":
+        from layoutdsl.sizes.graph import spec_from_graph
+
+        return spec_from_graph
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
