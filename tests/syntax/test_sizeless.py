@@ -21,14 +21,14 @@ ROOT = Path(__file__).resolve().parents[2]
 MODEL = load_model()
 
 LABELS_ONLY = """\
-# rooms with labels only: sizes from the size model, boundary chosen by the tool
+# rooms with labels only: types and sizes from the size model, boundary chosen by the tool
 rooms
-C1 C CORRIDOR
-R1 R CLASSROOM
+C1 CORRIDOR
+R1 CLASSROOM
 R2 CLASSROOM
-R3 R LAB
+R3 LAB
 R4 BATHROOM
-E1 E ENTRANCE onB
+E1 ENTRANCE onB
 
 adjacencies
 R1 C1 0.9 e
@@ -91,7 +91,8 @@ def test_resolving_fills_sizes_types_and_the_boundary() -> None:
     spec, notes = resolve_spec(parse(LABELS_ONLY))
     assert [d.code for d in notes] == ["I441", "I442"] and not any(d.is_error for d in notes)
     rooms = {room.id: room for room in spec.rooms}
-    assert rooms["R2"].rtype == "R" and rooms["R4"].rtype == "R"  # from the labels
+    # the types come from the labels
+    assert [rooms[r].rtype for r in ("C1", "R1", "R2", "R3", "R4", "E1")] == ["C", "R", "R", "R", "R", "E"]
     expected = MODEL.room_sizes("school", "R", "CLASSROOM")
     assert (rooms["R1"].target_w, rooms["R1"].target_h, rooms["R1"].max_ar) == (
         expected.target_w, expected.target_h, expected.max_ar)
@@ -120,7 +121,7 @@ def test_a_given_boundary_is_kept_and_sized_rooms_untouched() -> None:
 def test_fmt_keeps_sizeless_lines_and_fill_sizes_writes_the_numbers() -> None:
     source = Source("s.lay", LABELS_ONLY)
     kept = format_source(source)
-    assert "R1 R CLASSROOM\n" in kept and "R2 CLASSROOM\n" in kept and "\nboundary\n" not in kept
+    assert "R1 CLASSROOM\n" in kept and "C1 CORRIDOR\n" in kept and "\nboundary\n" not in kept
     assert kept.startswith("# rooms with labels only")  # comments stay
     filled = format_source(source, resolve=resolve_spec)
     assert "\nboundary\n" in filled and "R2 CLASSROOM" not in filled
