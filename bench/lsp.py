@@ -11,6 +11,8 @@ moment the diagnostics for that version arrive:
 - typo: an adjacency's room id misspelled (an E102 error, found by the checks);
 - fix: the typo undone (a clean spec: every check runs);
 - half line: a line cut halfway (a syntax error: the parser stops before the checks);
+- insert: a room line added at the top of `rooms`, which moves every line below it (the
+  worst case for the remembered lines, which are keyed by line number);
 - burst: five keystrokes 50 ms apart, timed from the last one (what a typist sees).
 
 Every figure includes the server's debounce (layoutdsl.lsp.server.DEBOUNCE_SECONDS), which
@@ -107,6 +109,10 @@ async def measure(rooms: int, repeat: int) -> tuple[dict[str, list[float]], dict
         times.setdefault(name, []).append(arrived - sent)
         await change("typo (E102)", _edit(adjacency, 0, 4, "R0_X"))
         await change("fix (clean spec)", _edit(adjacency, 0, 4, "R0_5"))
+        # a new line near the top: every line below it moves, so none of them is remembered
+        rooms_header = lines.index("rooms")
+        await change("insert a line at the top", _edit(rooms_header + 1, 0, 0, "R_new 3 4.5 3.6 3 5 4 1 1.6 R NEW\n"))
+        await change("restore", _whole(text))
         cut = len(lines[last_room]) // 2
         await change("half line (E005/E003)", _edit(last_room, cut, len(lines[last_room]), ""))
         await change("restore", _whole(text))

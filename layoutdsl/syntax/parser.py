@@ -13,8 +13,10 @@ from __future__ import annotations
 import difflib
 import functools
 import re
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
+from dataclasses import fields, is_dataclass, replace
 from pathlib import Path
+from types import MappingProxyType
 
 from lark import Lark, Token
 from lark.exceptions import UnexpectedCharacters, UnexpectedInput, UnexpectedToken
@@ -192,7 +194,7 @@ def get_parser() -> Lark:
     )
 
 
-_parsed_lines: dict[tuple[str, str, int, str], tuple[object, tuple[Diagnostic, ...]]] | None = None
+_parsed_lines: dict[tuple[str, str, str], tuple[object, tuple[Diagnostic, ...], int]] | None = None
 _parsed_lines_limit = 0
 
 
@@ -200,11 +202,41 @@ def keep_parsed_lines(limit: int = 50_000) -> None:
     """Remember up to `limit` parsed lines, for a process that parses nearly the same text
     again and again: the language server lints the whole spec after every edit, and on a
     2,000-room spec the per-line Lark parse is 90 % of the lint's time, yet an edit changes
-    one line. A line's node depends only on (rule, text, line number, file name), and nodes
-    are frozen, so a remembered one is reused as is. Off by default: a command that parses
-    each text once would only pay for the memory."""
+    one line. A line's node depends only on (rule, text, file name) and the line's number,
+    which only its spans hold: a remembered line that moved (a line was inserted above it)
+    is reused with its spans moved, several times faster than parsing it again. Nodes are
+    frozen, so a remembered one is shared as is. Off by default: a command that parses each
+    text once would only pay for the memory."""
     global _parsed_lines, _parsed_lines_limit
     _parsed_lines, _parsed_lines_limit = ({} if limit > 0 else None), limit
+
+
+def _moved(value, lines: int):
+    """`value` (a built line, or a part of it) with every Span in it `lines` lines further."""
+    kind = type(value)
+    if kind is Span:
+        return Span(value.line + lines, value.col, value.end_line + lines, value.end_col)
+    if kind is tuple or kind is list:
+        return kind(_moved(item, lines) for item in value)
+    if kind is MappingProxyType or isinstance(value, Mapping):
+        return MappingProxyType({key: Span(s.line + lines, s.col, s.end_line + lines, s.end_col) if type(s) is Span
+                                 else _moved(s, lines) for key, s in value.items()})  # fmt: skip
+    names = _span_fields(kind) if is_dataclass(kind) else ()
+    if not names:
+        return value
+    changed = {name: _moved(item, lines) for name in names if (item := getattr(value, name)) is not None}
+    return replace(value, **changed) if changed else value
+
+
+@functools.cache
+def _span_fields(cls: type) -> tuple[str, ...]:
+    """The fields of a node class that can hold spans (all but plain numbers and text)."""
+    return tuple(f.name for f in fields(cls) if f.name in ("span", "spans") or not _plain(f.type))
+
+
+def _plain(annotation) -> bool:
+    text = annotation if isinstance(annotation, str) else getattr(annotation, "__name__", "")
+    return text in ("str", "float", "int", "bool", "str | None", "float | None", "int | None")
 
 
 def parse_line(
@@ -215,15 +247,28 @@ def parse_line(
     Value problems found while building (an unknown room type, say) are appended to
     `diagnostics` when it is given; a line that fails to parse leaves none behind.
     """
-    memo, key = _parsed_lines, (rule, text, line, filename)
+    memo, key = _parsed_lines, (rule, text, filename)
     # one dict operation per look-up: the server lints in worker threads, and another
     # thread may clear the memory between a membership test and a read
     hit = memo.get(key) if memo is not None else None
     if hit is not None:
-        node, remembered = hit
+        node, remembered, at = hit
+        if at != line:
+            node, remembered = _moved(node, line - at), _moved(remembered, line - at)
+            memo[key] = (node, remembered, line)
         if diagnostics is not None:
             diagnostics.extend(remembered)
         return node
+    found: list[Diagnostic] = []
+    with build.building_line(filename, line, found):
+        node = get_parser().parse(text, start=rule)
+    if memo is not None:
+        if len(memo) >= _parsed_lines_limit:
+            memo.clear()  # simpler than LRU, and a whole re-parse costs well under a second
+        memo[key] = (node, tuple(found), line)
+    if diagnostics is not None:
+        diagnostics.extend(found)
+    return node
     found: list[Diagnostic] = []
     with build.building_line(filename, line, found):
         node = get_parser().parse(text, start=rule)

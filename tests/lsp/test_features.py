@@ -77,22 +77,32 @@ def test_fixes_are_read_from_the_hints_that_name_a_replacement() -> None:
     assert found["E012"].new_text == "C" and found["E001"].new_text == "adjacencies"
 
 
-@pytest.mark.parametrize("edited", [
-    SPEC,
-    SPEC.replace("kitchen hall 0.9 e", "kitchen hall 0.9 x"),     # a value error on a line that parses
-    SPEC.replace("R KITCHEN", "r KITCHEN"),                        # another one, replayed from memory
-    SPEC.replace("20 12\n", "20 12\n\n").replace("O1 0", "O1 0 0"),  # lines moved, one broken
+VALUE_ERROR = SPEC.replace("R KITCHEN", "r KITCHEN")
+
+
+@pytest.mark.parametrize(("before", "edited"), [
+    (SPEC, SPEC),
+    (SPEC, SPEC.replace("kitchen hall 0.9 e", "kitchen hall 0.9 x")),     # a value error on a line that parses
+    (SPEC, VALUE_ERROR),                                                  # another one
+    (SPEC, SPEC.replace("20 12\n", "20 12\n\n").replace("O1 0", "O1 0 0")),  # lines moved, one broken
+    (SPEC, "# a new first line\n" + SPEC),                              # every line moved: spans compared
+    (VALUE_ERROR, "# a new first line\n" + VALUE_ERROR),                # every line moved, value error too
+    (VALUE_ERROR, VALUE_ERROR.replace("rooms\n", "rooms\nnew 1 2 1 1 2 1 1 2 R NEW\n", 1)),
 ])  # fmt: skip
-def test_remembered_lines_give_the_same_spec_and_diagnostics(edited: str) -> None:
+def test_remembered_lines_give_the_same_spec_and_diagnostics(before: str, edited: str) -> None:
     def lint(text: str):
         spec, diagnostics = lint_source(Source("memo.lay", text))
-        return spec, [(d.code, d.message, d.span, d.help) for d in diagnostics]
+        nodes = () if spec is None else (*spec.rooms, *spec.adjacencies, *spec.clusters, *spec.hints)
+        spans = [(node.span, dict(node.spans)) for node in nodes]  # spans take no part in ==
+        return spec, spans, [(d.code, d.message, d.span, d.help, d.notes) for d in diagnostics]
 
     parser.keep_parsed_lines(0)
     fresh = lint(edited)
+    if edited == "# a new first line\n" + SPEC:
+        assert fresh[0] is not None  # the case that compares moved spans needs a spec that parses
     try:
         parser.keep_parsed_lines()
-        lint(SPEC)  # remember the original's lines, as the server does before an edit
+        lint(before)  # remember the lines before the edit, as the server does
         assert lint(edited) == fresh
         assert lint(edited) == fresh  # and again, entirely from memory
     finally:
