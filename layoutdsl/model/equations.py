@@ -301,6 +301,12 @@ def join_l_arms(m: pyo.ConcreteModel, joins: Mapping[tuple[str, str], str],
     leaves the symmetry chains too (an arm swapped with a look-alike room would break its L).
     """
     b = m.eq5_8_non_overlap
+    # sorted: callers build `joins` from sets of pairs, whose order follows Python's string
+    # hashing (PYTHONHASHSEED, new in every process), and the order of the flush constraints
+    # is the order SCIP sees them in. Unsorted, one spec and seed gave different layouts in
+    # different processes (measured on school_Neulengbach1's polish: 1229 and 1180 LP
+    # iterations, every room moved, at PYTHONHASHSEED 1 and 2; what looked like machine load)
+    joins = dict(sorted(joins.items()))
     m.join_l_arms = pyo.Block(doc="L-rooms: each room's box joined flush to its arm at a corner")
     m.join_l_arms.pairs = pyo.Set(dimen=2, ordered=True, initialize=list(joins))
     flush = []
@@ -322,7 +328,7 @@ def join_l_arms(m: pyo.ConcreteModel, joins: Mapping[tuple[str, str], str],
             flush.append((m.y[first] + m.h[first], m.y[second]))
             flush.append((m.x[box], m.x[arm]) if end == "lo" else (m.x[box] + m.w[box], m.x[arm] + m.w[arm]))
     m.join_l_arms.flush = pyo.Constraint(range(len(flush)), rule=lambda _, i: flush[i][0] == flush[i][1])
-    turns = [(box, arm, crosses) for (box, arm), crosses in (crossing or {}).items() if (box, arm) in joins]
+    turns = [(box, arm, crosses) for (box, arm), crosses in sorted((crossing or {}).items()) if (box, arm) in joins]
     m.join_l_arms.turns = turns  # (box, arm, crosses): a warm start gives the pair orientations that obey them
     m.join_l_arms.turn = pyo.Constraint(
         range(len(turns)),
