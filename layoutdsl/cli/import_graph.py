@@ -43,6 +43,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--size-model", default=None, metavar="FILE",
         help="room graphs: a size model from `layoutdsl sizes fit` (default: the shipped one)",
     )  # fmt: skip
+    parser.add_argument(
+        "--fixed-boundary", action="store_true",
+        help="room graphs: write the chosen boundary as a `boundary` section, which compile must "
+        "keep (default: leave it out, so compile chooses the same one and may grow it)",
+    )  # fmt: skip
 
 
 def graph_format(args: argparse.Namespace, text: str | None) -> str | None:
@@ -103,7 +108,13 @@ def run(args: argparse.Namespace, fmt: str, text: str | None, print_diagnostics)
     from dataclasses import replace
 
     spec = replace(spec, path=f"{name}.lay" if to_stdout else args.output)
-    output = format_spec(spec)
+    chosen = spec.boundary
+    if args.fixed_boundary:
+        output = format_spec(spec)
+    else:
+        # No boundary section: lint and compile choose the same boundary from the same rooms
+        # (sizes.resolve), and compile may grow it, as it does for a graph given in memory.
+        output = _header(args, fmt, source_name, chosen) + format_spec(replace(spec, boundary=None))
     lint_errors = [d for d in lint_source(Source(spec.path, output))[1] if d.is_error]
     if lint_errors:
         print_diagnostics(lint_errors, {spec.path: Source(spec.path, output)}, style)
@@ -124,7 +135,18 @@ def run(args: argparse.Namespace, fmt: str, text: str | None, print_diagnostics)
         sizes = f"drawn with seed {args.seed}" if args.seed is not None else "typical"
         print(
             f"imported {len(spec.rooms)} rooms and {len(spec.adjacencies)} adjacencies into {where} "
-            f"({sizes} {args.like} sizes, boundary {spec.boundary.w:g} x {spec.boundary.h:g} m chosen)",
+            f"({sizes} {args.like} sizes, boundary {chosen.w:g} x {chosen.h:g} m chosen"
+            f"{'' if args.fixed_boundary else ' at compile time'})",
             file=sys.stderr,
         )
     return exitcodes.OK
+
+
+def _header(args: argparse.Namespace, fmt: str, source_name: str, boundary) -> str:
+    """The comment that opens an imported graph's spec: where it came from, and its boundary."""
+    sizes = f"drawn with seed {args.seed}" if args.seed is not None else "typical"
+    return (
+        f"# room graph {Path(source_name).name} ({fmt}), rooms with {sizes} {args.like} sizes from the size model.\n"
+        f"# No boundary section: the tool chooses {boundary.w:g} x {boundary.h:g} m for these rooms and compile\n"
+        "# may grow it; `layoutdsl fmt --fill-sizes` writes it in (docs/graph-formats.md).\n\n"
+    )

@@ -202,9 +202,17 @@ def test_import_csv_writes_a_spec_that_lints_clean(tmp_path: Path, capsys) -> No
     assert main(["import", str(FIXTURES / "cml_new_43.csv"), "-o", str(out)]) == 0
     text = out.read_text()
     assert text.count(" onB") == 4  # four entrances, each must open to the outside
-    assert "\nboundary\n" in text
-    assert main(["lint", str(out)]) == 0
+    graph, _ = read_graph(FIXTURES / "cml_new_43.csv")
+    chosen = spec_from_graph(graph).boundary
+    # no boundary section: lint and compile choose the same one (and compile may grow it)
+    assert "\nboundary\n" not in text and f"chooses {chosen.w:g} x {chosen.h:g} m" in text
+    spec, diagnostics = lint_source(Source(str(out), text))
+    assert (spec.boundary.w, spec.boundary.h, spec.boundary.chosen) == (chosen.w, chosen.h, True)
+    assert not [d for d in diagnostics if d.is_error]
     assert "imported 25 rooms" in capsys.readouterr().err
+    fixed = tmp_path / "fixed.lay"
+    assert main(["import", str(FIXTURES / "cml_new_43.csv"), "-o", str(fixed), "--fixed-boundary", "-q"]) == 0
+    assert f"\nboundary\n{chosen.w:g} {chosen.h:g}\n" in fixed.read_text()
 
 
 def test_import_names_the_format_and_the_kind(tmp_path: Path, monkeypatch) -> None:
