@@ -282,6 +282,13 @@ def room_markdown(document: SpecDocument, room: RoomEntry, parsed: Room | None =
         out.append("sizes: none written (the size model chooses them)")
     else:
         out.append("sizes: " + " ".join(room.numbers) + " (incomplete line)")
+    arm = next((line for line in document.lines if line.section == "arms" and not line.is_header
+                and line.words and line.words[0].text == room.id), None)  # fmt: skip
+    if arm is not None:
+        numbers = tuple(word.text for word in arm.words[1:9])
+        out += ["", f"L-shaped: its second rectangle is on line {arm.number + 1} (`arms`)"]
+        if len(numbers) == 8 and all(is_number(n) for n in numbers):
+            out += ["", *_size_table(numbers)]
     extras = []
     if room.on_boundary:
         extras.append("on the boundary (`onB`)")

@@ -3,6 +3,8 @@ contexts, quick fixes, and the parsed-line memory the server turns on."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 from layoutdsl.api import lint_source
@@ -10,6 +12,8 @@ from layoutdsl.diagnostics.source import Source
 from layoutdsl.lsp import features
 from layoutdsl.lsp.document import SpecDocument
 from layoutdsl.syntax import parser
+
+ROOT_SPECS = Path(__file__).resolve().parents[2] / "specs"
 
 SPEC = """\
 rooms
@@ -130,3 +134,14 @@ def test_hover_on_a_section_name_or_a_setting_key() -> None:
     assert features.hover(document, 7, 1)[0] == "setting `walldim`, default `0.2`"
     assert "`feasibility`" in features.hover(document, 8, 1)[0]
     assert features.hover(document, 7, 9) is None  # a setting's value
+
+
+def test_hover_on_an_l_room_shows_its_arm() -> None:
+    text = (ROOT_SPECS / "l_corridor.lay").read_text(encoding="utf-8")
+    document = SpecDocument(text)
+    room_id = next(line.words[0].text for line in document.lines if line.section == "arms" and not line.is_header and line.words)
+    word = document.definitions[room_id]
+    markdown, _ = features.hover(document, word.line, word.start)
+    arm_line = next(n for n, line in enumerate(text.split("\n")) if line.split()[:1] == [room_id] and n != word.line)
+    assert f"L-shaped: its second rectangle is on line {arm_line + 1} (`arms`)" in markdown
+    assert markdown.count("| width (m) |") == 2
