@@ -5,6 +5,9 @@
   flag, `cover=`/`error=` weights, portal types, obstacle and cluster ids, setting keys and
   values, comments, and values that cannot be right where they stand.
 - `language-configuration.json`: what VS Code needs beside it (`#` line comments, words).
+- `package.json` and `extension.js`: this folder is also a VS Code extension that declares the
+  language and the grammar and starts `layoutdsl lsp` (copy it to `~/.vscode/extensions/`
+  and run `npm install` there; docs/editor.md).
 
 tests/lsp/test_grammar.py tokenizes the bundled specs with vscode-textmate, the engine VS Code
 uses, and compares them with committed snapshots.
@@ -16,3 +19,5 @@ from pathlib import Path
 
 GRAMMAR = Path(__file__).with_name("lay.tmLanguage.json")
 LANGUAGE_CONFIGURATION = Path(__file__).with_name("language-configuration.json")
+VSCODE_EXTENSION = Path(__file__).parent
+"""The folder to copy into VS Code's extensions folder."""

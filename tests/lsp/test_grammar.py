@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from layoutdsl.editor import GRAMMAR, LANGUAGE_CONFIGURATION
+from layoutdsl.editor import GRAMMAR, LANGUAGE_CONFIGURATION, VSCODE_EXTENSION
 from layoutdsl.syntax.ast import EMPHASES, ROOM_TYPES
 from layoutdsl.syntax.parser import SECTIONS
 
@@ -100,3 +100,18 @@ def test_the_grammar_knows_the_languages_words() -> None:
     emphasis = next(p["match"] for p in rules["section-settings"]["patterns"][1]["patterns"] if "constant.language" in p.get("name", ""))
     assert all(value in emphasis for value in EMPHASES)
     assert json.loads(LANGUAGE_CONFIGURATION.read_text(encoding="utf-8"))["comments"]["lineComment"] == "#"
+
+
+def test_the_folder_is_a_vs_code_extension_for_the_grammar_and_the_server() -> None:
+    manifest = json.loads((VSCODE_EXTENSION / "package.json").read_text(encoding="utf-8"))
+    (language,) = manifest["contributes"]["languages"]
+    (grammar,) = manifest["contributes"]["grammars"]
+    assert language["extensions"] == [".lay"] and grammar["language"] == language["id"] == "lay"
+    assert grammar["scopeName"] == json.loads(GRAMMAR.read_text(encoding="utf-8"))["scopeName"] == "source.lay"
+    for path in (grammar["path"], language["configuration"], manifest["main"]):
+        assert (VSCODE_EXTENSION / path).is_file(), path
+    assert manifest["activationEvents"] == ["onLanguage:lay"]
+    assert manifest["contributes"]["configuration"]["properties"]["layoutdsl.command"]["default"] == ["layoutdsl", "lsp"]
+    node = shutil.which("node")
+    if node is not None:  # the script at least parses (it runs only inside VS Code)
+        subprocess.run([node, "--check", str(VSCODE_EXTENSION / manifest["main"])], check=True, timeout=60)
