@@ -100,7 +100,10 @@ def _show(args: argparse.Namespace, out: Output) -> int:
         rtype = kind.label_types.get(label, "R")
         size = model.room_sizes(args.like, rtype, label)
         rows.append({"label": label, "rtype": rtype, "rooms": law.rooms, "target_w": size.target_w,
-                     "target_h": size.target_h, "source": size.source})  # fmt: skip
+                     "target_h": size.target_h, "source": size.source,
+                     "area_median": round(law.typical_area, 3),
+                     "long_side_quartiles": [round(law.long_quantiles[i], 3) for i in (2, 3, 4)],
+                     "short_side_quartiles": [round(law.short_quantiles[i], 3) for i in (2, 3, 4)]})  # fmt: skip
     if not out.json:
         width = max(len(row["label"]) for row in rows)
         lines = [f"{'label':<{width}}  type  rooms  typical size (m)  from"]

@@ -172,6 +172,8 @@ def fit_law(rooms: list[RoomSample]) -> SizeLaw:
         area_min=min(areas),
         area_max=max(areas),
         aspect_quantiles=tuple(_quantile(aspects, p) for p in QUANTILES),
+        long_quantiles=tuple(_quantile(sorted(room.long for room in rooms), p) for p in QUANTILES),
+        short_quantiles=tuple(_quantile(sorted(room.short for room in rooms), p) for p in QUANTILES),
     )
 
 

@@ -102,6 +102,11 @@ class SizeLaw:
     area_max: float
     aspect_quantiles: tuple[float, ...]
     """Aspect ratios (>= 1) at QUANTILES."""
+    long_quantiles: tuple[float, ...] = ()
+    """The rooms' long sides (metres) at QUANTILES: what the corpus' widths look like, for
+    reports (`sizes show --format json`) and comparisons; sizes come from area and aspect."""
+    short_quantiles: tuple[float, ...] = ()
+    """The rooms' short sides (metres) at QUANTILES."""
 
     @property
     def typical_area(self) -> float:
@@ -127,6 +132,8 @@ class SizeLaw:
             "area_min": self.area_min,
             "area_max": self.area_max,
             "aspect_quantiles": list(self.aspect_quantiles),
+            "long_quantiles": list(self.long_quantiles),
+            "short_quantiles": list(self.short_quantiles),
         }
 
     @classmethod
@@ -135,6 +142,8 @@ class SizeLaw:
             int(data["rooms"]), float(data["log_area_mean"]), float(data["log_area_sd"]),
             float(data["area_min"]), float(data["area_max"]),
             tuple(float(q) for q in data["aspect_quantiles"]),
+            tuple(float(q) for q in data.get("long_quantiles", ())),
+            tuple(float(q) for q in data.get("short_quantiles", ())),
         )  # fmt: skip
 
 

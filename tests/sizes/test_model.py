@@ -156,3 +156,21 @@ def test_a_broken_model_file_is_a_model_error(tmp_path: Path) -> None:
     bad.write_text('{"format": "something else"}')
     with pytest.raises(ModelError, match="not a size model"):
         load_model(bad)
+
+
+@pytest.mark.parametrize("kind", ["school", "office"])
+def test_typical_sides_lie_within_the_corpus_sides(kind: str) -> None:
+    """The typical room (median area at median aspect) has a long and a short side inside the
+    10-90 % range of the long and short sides measured on the corpus, for every label with
+    20 rooms or more: area and aspect ratio treated as independent still give real rooms."""
+    model = MODEL.kind(kind)
+    checked = 0
+    for label, law in model.by_label.items():
+        if law.rooms < 20:
+            continue
+        size = MODEL.room_sizes(kind, model.label_types[label], label)
+        long_side, short_side = max(size.target_w, size.target_h), min(size.target_w, size.target_h)
+        assert law.long_quantiles[1] <= long_side <= law.long_quantiles[5], label
+        assert law.short_quantiles[1] <= short_side <= law.short_quantiles[5], label
+        checked += 1
+    assert checked >= 4
