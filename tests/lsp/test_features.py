@@ -6,6 +6,8 @@ from __future__ import annotations
 from pathlib import Path
 
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from layoutdsl.api import lint_source
 from layoutdsl.diagnostics.source import Source
@@ -145,3 +147,44 @@ def test_hover_on_an_l_room_shows_its_arm() -> None:
     arm_line = next(n for n, line in enumerate(text.split("\n")) if line.split()[:1] == [room_id] and n != word.line)
     assert f"L-shaped: its second rectangle is on line {arm_line + 1} (`arms`)" in markdown
     assert markdown.count("| width (m) |") == 2
+
+
+_EDITS = st.lists(
+    st.tuples(st.sampled_from(["delete", "duplicate", "swap", "retype"]), st.integers(0, 10_000), st.integers(0, 10_000)),
+    min_size=1, max_size=6,
+)  # fmt: skip
+
+
+@settings(max_examples=40, deadline=None)
+@given(edits=_EDITS)
+def test_remembered_lines_agree_with_a_fresh_parse_through_any_edits(edits) -> None:
+    # the server's lints, one per edit, with the parsed lines remembered all along, against a
+    # fresh parse of each text (specs, their spans, and the diagnostics)
+    def lint(text: str):
+        spec, diagnostics = lint_source(Source("edits.lay", text))
+        nodes = () if spec is None else (*spec.rooms, *spec.arms, *spec.adjacencies, *spec.positions,
+                                          *spec.connections, *spec.clusters, *spec.hints)  # fmt: skip
+        return spec, [(n.span, dict(n.spans)) for n in nodes], [(d.code, d.message, d.span, d.notes) for d in diagnostics]
+
+    lines = (ROOT_SPECS / "campus_constraints.lay").read_text(encoding="utf-8").split("\n")
+    try:
+        parser.keep_parsed_lines()
+        lint("\n".join(lines))
+        for kind, i, j in edits:
+            i, j = i % len(lines), j % len(lines)
+            if kind == "delete" and len(lines) > 1:
+                del lines[i]
+            elif kind == "duplicate":
+                lines.insert(j, lines[i])
+            elif kind == "swap":
+                lines[i], lines[j] = lines[j], lines[i]
+            else:  # a keystroke: the line's last character typed again, or a letter
+                lines[i] = lines[i] + (lines[i][-1:] or "x")
+            text = "\n".join(lines)
+            remembered = lint(text)
+            parser.keep_parsed_lines(0)
+            assert remembered == lint(text)
+            parser.keep_parsed_lines()
+            lint(text)  # as the server left it
+    finally:
+        parser.keep_parsed_lines(0)
