@@ -167,6 +167,16 @@ def _read_csv(text: str, filename: str):
         rows.append((number, cells))
     if not rows:
         return None, [_error(GRAPH_UNREADABLE, "the adjacency matrix has no rows", filename, _FIRST, "empty file")], None
+    if len(rows) > 1 and all(len(cells) == 1 for _, cells in rows):
+        line, cells = rows[0]
+        separator = next((c for c in (";", "\t", " ") if c in cells[0][0].strip()), None)
+        if separator is not None:
+            shown = "a tab" if separator == "\t" else f"`{separator}`"
+            return None, [_error(
+                GRAPH_UNREADABLE, f"the cells are separated by {shown}, not by commas", filename,
+                Span(line, 1, line, len(cells[0][0]) + 1), "no comma on this line",
+                help="an adjacency-matrix CSV separates its cells with commas",
+            )], None  # fmt: skip
     diagnostics: list[Diagnostic] = []
     size = len(rows)
     values: list[list[int]] = []
@@ -178,9 +188,9 @@ def _read_csv(text: str, filename: str):
                 last_text, last_col = cells[-1]
                 col, width = last_col + len(last_text.strip()), 1
             diagnostics.append(_error(
-                GRAPH_NOT_SQUARE, f"row has {len(cells)} cells, but the matrix has {size} rows", filename,
-                Span(line, col, line, col + width),
-                "extra cell" if len(cells) > size else f"row ends after {len(cells)} cells",
+                GRAPH_NOT_SQUARE, f"row has {len(cells)} cell{'s' if len(cells) != 1 else ''}, but the matrix "
+                f"has {size} rows", filename, Span(line, col, line, col + width),
+                "extra cell" if len(cells) > size else f"row ends after {len(cells)} cell{'s' if len(cells) != 1 else ''}",
                 help="an adjacency matrix has one row and one column per room",
             ))  # fmt: skip
             continue
@@ -188,10 +198,12 @@ def _read_csv(text: str, filename: str):
         for cell, col in cells:
             word = cell.strip()
             if not re.fullmatch(r"[+-]?\d+(?:\.0*)?", word):
+                hint = "cells are 0 or 1 off the diagonal and a room code on it"
+                if re.search(r"[;\t ]", word):
+                    hint = "cells are separated by commas"
                 diagnostics.append(_error(
                     GRAPH_UNREADABLE, f"cell `{word}` is not a whole number", filename,
-                    Span(line, col, line, col + max(1, len(word))), "not a number",
-                    help="cells are 0 or 1 off the diagonal and a room code on it",
+                    Span(line, col, line, col + max(1, len(word))), "not a number", help=hint,
                 ))  # fmt: skip
                 row.append(0)
                 continue

@@ -149,6 +149,7 @@ def test_json_with_codes_reads_like_the_csv() -> None:
     ("3,1\n1,2000\n", "E435", 2, 3),
     ("", "E430", 1, 1),
     ("3,1\n1,1.5\n", "E430", 2, 3),
+    ("3;1\n1;100\n", "E430", 1, 1),                    # semicolons
 ])  # fmt: skip
 def test_malformed_csv_is_located(text: str, code: str, line: int, col: int) -> None:
     graph, diagnostics = read_graph("g.csv", text=text)
