@@ -16,9 +16,7 @@ from layoutdsl.cli.output import Output, add_command, add_output_arguments
 from layoutdsl.diagnostics import exitcodes
 from layoutdsl.syntax.ast import EMPHASES
 
-STRATEGIES = ("auto", "thesis", "cycles")
-"""The strategies compile_spec dispatches over (layoutdsl.compile); defined here, not in
-the solver, so that `--help` need not import Pyomo."""
+from layoutdsl.compile.strategies import STRATEGIES  # the table; light, so `--help` need not import Pyomo
 
 
 def add_parser(subparsers) -> None:
@@ -74,8 +72,11 @@ def add_parser(subparsers) -> None:
     parser.add_argument("--workers", type=positive_int, metavar="N",
                         help="variants compiled in parallel (default: one per core)")
     parser.add_argument("--strategy", choices=STRATEGIES, default="auto",
-                        help="auto: construct a first layout, then SCIP; thesis: the thesis' "
-                        "formulation solved by SCIP from scratch; cycles: cycle decomposition")
+                        help="auto: the generator's first layout, then SCIP; thesis: the thesis' "
+                        "formulation solved by SCIP from scratch")
+    parser.add_argument("--grow-boundary", dest="grow_boundary", action="store_true", default=None,
+                        help="let the generator grow a boundary too tight for the arrangement it "
+                        "finds; the growth is reported")
     parser.add_argument("--no-explain", dest="explain", action="store_false",
                         help="when the spec is infeasible, say so without searching for the "
                         "conflicting lines (faster on large specs)")
@@ -140,6 +141,7 @@ def run(args: argparse.Namespace) -> int:
         solution_limit=args.solution_limit,
         quiet=out.quiet,  # the solver's progress lines on stderr are progress: not with -q
         strategy=args.strategy,
+        grow_boundary=getattr(args, "grow_boundary", None),
     )
     if args.variants:
         return _run_variants(spec, args, options, outdir, formats, sources, out)

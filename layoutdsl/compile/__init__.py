@@ -1,29 +1,33 @@
-"""Compile a checked spec to a verified Layout: the dispatcher over the strategies.
+"""Compile a checked spec to a verified Layout.
 
     from layoutdsl.compile import compile_spec
     result = compile_spec(spec, SolveOptions(time_limit=60))
 
-The strategies, each a module of this package:
-- 'auto' and 'thesis' (`pipeline.compile_from_start`): a first feasible layout (the
-  construction, `construct.py`) polished by SCIP; 'thesis' solves the thesis' formulation
-  as written from scratch (the thesis, §5.5.1).
-- 'cycles' (`cycles.compile_with_cycles`): cycle decomposition (§5.5.3), also the fallback
-  of 'auto' when the construction finds no start.
-`variants.py` compiles several different layouts of one spec; `explain.py` says why a spec
-has none.
+The package is laid out as the design (docs/generator.md):
+- strategies.py: the strategy table ('auto', 'thesis');
+- pipeline.py: the stages, from a first layout to a verified Layout;
+- budgets.py: every work limit and time share, in one table;
+- generator.py: the one generator of first layouts, built of
+  structure.py (what cannot be drawn), initial.py (the initial state), representation.py
+  (sequence pairs and their packing), moves.py, cost.py and schedule.py (the annealing);
+  the sizing with relations fixed lives in layoutdsl.solve.relations;
+- variants.py: several different layouts of one spec; explain.py: why a spec has none.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
+from typing import TYPE_CHECKING
 
-from layoutdsl.compile import cycles, explain
-from layoutdsl.compile.pipeline import CompileResult, StartProvider, compile_from_start
-from layoutdsl.layout.geometry import Rect
-from layoutdsl.solve import ProgressCallback, SolveOptions
-from layoutdsl.syntax.ast import Spec
+from layoutdsl.compile.strategies import STRATEGIES
 
-__all__ = ["CompileResult", "compile_spec"]
+if TYPE_CHECKING:
+    from layoutdsl.compile.pipeline import CompileResult, StartProvider
+    from layoutdsl.layout.geometry import Rect
+    from layoutdsl.solve import ProgressCallback, SolveOptions
+    from layoutdsl.syntax.ast import Spec
+
+__all__ = ["CompileResult", "STRATEGIES", "compile_spec"]
 
 
 def compile_spec(
@@ -37,27 +41,25 @@ def compile_spec(
 ) -> CompileResult:
     """Compile a checked spec to a verified Layout under `options` (strategy, limits, seed).
 
-    options.strategy picks the strategy ('auto', 'thesis' or 'cycles'); `start`,
-    `start_provider` and `explain_infeasible` go to 'auto' and 'thesis'. When 'auto' finds
-    no start and the room graph has cycles, it spends the time left on cycle decomposition
-    (unless options.cycles_fallback is off).
+    options.strategy names a row of STRATEGIES; `start` (rectangles to polish instead of
+    generating), `start_provider` (another first-layout provider) and `explain_infeasible`
+    go to the pipeline.
     """
-    if spec.arms and options.strategy in ("cycles", "thesis"):
+    from layoutdsl.compile import explain
+    from layoutdsl.compile.pipeline import CompileResult, compile_from_start
+
+    if options.strategy not in STRATEGIES:
+        raise ValueError(f"unknown strategy {options.strategy!r}; one of {', '.join(STRATEGIES)}")
+    if spec.arms and options.strategy == "thesis":
         return CompileResult(None, [explain.strategy_without_l_rooms(spec, options.strategy)], "no_layout")
-    if options.strategy == "cycles":
-        return cycles.compile_with_cycles(spec, options, progress=progress)
-    # The thesis' remedy when generation finds nothing (§5.5.3). SCIP from scratch, the
-    # alternative, finds no layout from about 20 rooms up (solver scouting), so the time left
-    # is better spent decomposing.
-    # (not with L-rooms: the decomposition solves the thesis' model of rectangles)
-    decompose = (options.strategy == "auto" and options.cycles_fallback and not spec.arms
-                 and cycles.cycle_rank(spec) > 0)
-    fallback = _decompose_cycles if decompose else None
-    return compile_from_start(
-        spec, options, start=start, start_provider=start_provider, progress=progress,
-        explain_infeasible=explain_infeasible, no_start_fallback=fallback,
-    )  # fmt: skip
+    return compile_from_start(spec, options, start=start, start_provider=start_provider, progress=progress,
+                              explain_infeasible=explain_infeasible)
 
 
-def _decompose_cycles(spec: Spec, options: SolveOptions, progress: ProgressCallback | None) -> CompileResult:
-    return cycles.compile_with_cycles(spec, options, progress=progress)
+def __getattr__(name: str):
+    # CompileResult is imported lazily: the pipeline pulls in SCIP and numba
+    if name == "CompileResult":
+        from layoutdsl.compile.pipeline import CompileResult
+
+        return CompileResult
+    raise AttributeError(name)

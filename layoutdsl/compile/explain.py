@@ -73,9 +73,9 @@ E905 = register(
     Severity.ERROR,
     "strategy-without-l-rooms",
     "Reports a compile of a spec with L-shaped rooms (an `arms` section) under a strategy "
-    "that places rectangles only: `thesis` (the thesis' model as written) or `cycles`.",
+    "that places rectangles only: `thesis` (the thesis' model as written).",
     "Those strategies solve the thesis' model, in which every room is one rectangle; they "
-    "would drop the rooms' arms. The construction (strategy `auto`) places L-rooms.",
+    "would drop the rooms' arms. The generator (strategy `auto`) places L-rooms.",
     "arms\nC0 1.5 2.2 1.8 6 9 8 1 20\n# compiled with --strategy thesis",
 )
 
@@ -93,6 +93,19 @@ W906 = register(
     "and meet their rooms in much the same order whatever the seed.",
     "boundary\n73.425 19.8\n# office_324-Elm-Furn-Plan imported without hints (36 rooms), "
     "compiled with --variants 5",
+)
+
+E908 = register(
+    "E908",
+    Severity.ERROR,
+    "rectangles-cannot-draw",
+    "Reports four rooms joined pairwise by doors (a K4) none of which may be L-shaped: no four "
+    "rectangles pairwise share a wall of positive length.",
+    "Three rectangles can meet pairwise only around a point, and the fourth would have to "
+    "touch all three, which no rectangle can. One L-shaped room (an `arms` line, e.g. for a "
+    "corridor) wraps around two of the others and makes the four drawable.",
+    "adjacencies\nC0 C1 0.9 i\nC0 C2 0.9 i\nC0 C3 0.9 i\nC1 C2 0.9 i\nC1 C3 0.9 i\n"
+    "C2 C3 0.9 i\n# four corridors joined pairwise; none has an arm",
 )
 
 LONG_BOUNDARY = 3.0
@@ -186,10 +199,9 @@ def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagno
         help="try another `--seed` (each draws other arrangements to construct), a longer "
              "limit (`--time-limit`), a larger boundary, wider size ranges (a larger variance "
              "when importing), " + (
-                 "`--emphasis feasibility`, or the cycle decomposition (`--strategy cycles`)"
+                 "or `--grow-boundary`"
                  if not spec.arms else
-                 "or rectangular rooms (`layoutdsl import --rectangular-only`, which the cycle "
-                 "decomposition can also solve)"),
+                 "`--grow-boundary`, or rectangular rooms (`layoutdsl import --rectangular-only`)"),
     )
 
 
@@ -345,18 +357,19 @@ def scip_feasibility(spec: Spec, seconds: float, *, seed: int = 0) -> bool | Non
 
 def feasibility(spec: Spec, seconds: float, *, seed: int = 0) -> bool | None:
     """SCIP for a third of the time (it proves most conflicts infeasible in presolve), then the
-    first-feasible construction (layoutdsl.compile.construct) for the rest, since SCIP
-    alone often finds no layout of ten rooms or more in seconds even when one exists."""
+    generator (layoutdsl.compile.generator) for the rest, since SCIP alone often finds no
+    layout of ten rooms or more in seconds even when one exists."""
     began = time.monotonic()
     result = scip_feasibility(spec, seconds / 3, seed=seed)
     if result is not None:
         return result
-    from layoutdsl.compile.construct import construct_start
+    from layoutdsl.compile.generator import generate
 
     left = seconds - (time.monotonic() - began)
     if left <= 0.1:
         return None
-    rects = construct_start(spec, seed=seed, deadline=time.monotonic() + left)
+    generated = generate(spec, seed=seed, deadline=time.monotonic() + left)
+    rects, spec = generated.rects, generated.spec
     if rects is None:
         return None
     from layoutdsl.layout.geometry import layout_from_rects

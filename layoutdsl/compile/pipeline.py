@@ -1,7 +1,7 @@
-"""The compile pipeline: checked spec -> (start) -> model -> SCIP -> verified Layout.
+"""The compile pipeline: checked spec -> first layout -> model -> SCIP -> verified Layout.
 
-Stages, each callable alone: a first feasible geometry (`start`, or a `start_provider` such
-as the construction of issue 6), `model.build_model`, `model.warm_start_from_rects`,
+Stages, each callable alone: a first feasible geometry (`start`, or a `start_provider`, by
+default the generator: layoutdsl.compile.generator), `model.build_model`, `model.warm_start_from_rects`,
 `solve.polish` (best geometry for the start's relations), `solve.improve_by_neighbourhoods`
 (large-neighbourhood search), `solve.solve` (branch-and-bound over the whole model, warm
 started), `layout_from_rects`, `verify.verify`. A layout that fails verification is never
@@ -10,13 +10,15 @@ returned; infeasibility and time-outs become E9xx diagnostics (explain.py).
 
 from __future__ import annotations
 
+import sys
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
-from functools import partial
 
-from layoutdsl.compile import explain, lshape
-from layoutdsl.compile.construct import Annealing, construct_start, start_annealing
+from layoutdsl.compile import explain, structure
+from layoutdsl.compile.budgets import LNS_SIZE, LNS_SMALL, TIME
+from layoutdsl.compile.generator import Generated, generate
+from layoutdsl.layout import lshape
 from layoutdsl.syntax.ast import Spec
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.layout import Layout, SolveInfo, round_layout_number
@@ -44,40 +46,9 @@ from layoutdsl.layout.geometry import Rect
 from layoutdsl.layout.verify import verify
 from layoutdsl.solve.isolated import SOLVER_CRASHED, solve_isolated
 
-StartProvider = Callable[[Spec, SolveOptions], "dict[str, Rect] | None"]
-"""start_provider(spec, options) -> rectangles satisfying every hard constraint, or None.
-It must return within options.time_limit seconds (its share of the compile's limit)."""
-
-Fallback = Callable[[Spec, SolveOptions, "ProgressCallback | None"], "CompileResult"]
-"""fallback(spec, options, progress) -> the result of another strategy, in options.time_limit."""
-
-START_SHARE = 0.75
-"""Share of the time limit a start provider may use; SCIP gets the rest and any time left.
-Generation from the room graph finds the large real plans' first layouts in 10-35 s
-(bench/results/generation-60s.txt), while the fallback strategy never found one for them in
-the other half of a 60 s limit: the construction gets three quarters."""
-
-PROBE_SHARE = 0.05
-"""Share of the time limit (at most 5 s) for the presolve-only infeasibility probe."""
-
-L_START_SHARE = 0.8
-"""Share of the time limit the construction gets for a spec with L-shaped rooms, which has
-no fallback when the construction finds nothing; polishing gets the rest."""
-
-POLISH_SHARE = 0.1
-"""Share of the time limit for polishing a start with its relations fixed (solve.polish)."""
-
-LNS_SHARE = {True: 0.7, False: 0.9}
-"""Share of the time left after polishing for the neighbourhood search
-(solve.improve_by_neighbourhoods), for specs of at most / more than LNS_SMALL rooms;
-branch-and-bound over the whole model gets the rest. Measured: on 17 rooms branch-and-bound
-still closes the gap (school_fig42: 1.6 % in 12 s); on 76-105 rooms it improves nothing."""
-
-LNS_SMALL = 20
-
-LNS_SIZE = 4
-"""Rooms freed per neighbourhood; measured on school_fig42 (17 rooms, 10 s): 4 rooms reached
-29.1, 6 rooms 29.5, 8 rooms 32.0 from a polished start of 35.7."""
+StartProvider = Callable[[Spec, SolveOptions], "Generated | dict[str, Rect] | None"]
+"""start_provider(spec, options) -> a Generated (or rectangles satisfying every hard
+constraint, or None). It must return within options.time_limit seconds."""
 
 
 @dataclass(slots=True)
@@ -95,12 +66,10 @@ class CompileResult:
     outcome: SolveOutcome | None = None
 
 
-def default_start_provider(spec: Spec, options: SolveOptions,
-                           annealing: Annealing | None = None) -> dict[str, Rect] | None:
-    """The first-feasible construction of issue 6 (layoutdsl.compile.construct), taking over
-    `annealing` when one was started for it (construct.start_annealing)."""
-    return construct_start(spec, seed=options.seed, deadline=time.monotonic() + options.time_limit,
-                           annealing=annealing)
+def default_start_provider(spec: Spec, options: SolveOptions) -> Generated:
+    """The generator's first layout (layoutdsl.compile.generator), cut off at the time limit."""
+    return generate(spec, seed=options.seed, deadline=time.monotonic() + options.time_limit,
+                    grow_boundary=options.grow_boundary)
 
 
 def compile_from_start(
@@ -111,16 +80,13 @@ def compile_from_start(
     start_provider: StartProvider | None = None,
     progress: ProgressCallback | None = None,
     explain_infeasible: bool = True,
-    no_start_fallback: Fallback | None = None,
 ) -> CompileResult:
     """The strategies 'auto' and 'thesis': a verified Layout from a start polished by SCIP.
 
     strategy 'thesis': the thesis' formulation as written, solved by SCIP from scratch.
     strategy 'auto': a first feasible layout from `start`, else from `start_provider` (by
-    default the construction of issue 6), handed to SCIP as its start for polishing; without
-    a start, SCIP alone. The start itself is the answer if SCIP finds nothing better in time.
-    When no start is found, `no_start_fallback(spec, options_with_the_time_left, progress)`
-    gets the time left instead (the dispatcher passes cycle decomposition there).
+    default the generator), handed to SCIP as its start for polishing. The start itself is
+    the answer if SCIP finds nothing better in time; without one, SCIP searches alone.
     """
     began = time.monotonic()
     deadline = began + options.time_limit
@@ -128,40 +94,42 @@ def compile_from_start(
     progress = _progress_since(began, progress, options)
     formulation = options.formulation
     rects_start: dict[str, Rect] | None = dict(start) if start is not None else None
+    generated: Generated | None = None
     if options.strategy == "thesis":
         formulation = THESIS_AS_WRITTEN
         rects_start = None
+    elif rects_start is None:
+        undrawable = structure.undrawable(spec)
+        if undrawable:
+            timings["total"] = time.monotonic() - began
+            return CompileResult(None, undrawable, "infeasible", timings)
+        soft = options.grow_boundary or (spec.boundary is not None and spec.boundary.chosen)
+        if not soft and not spec.arms:
+            # SCIP's presolve proves typical conflicts in milliseconds: the generator would
+            # otherwise spend its whole work budget on a spec that has no layout
+            t0 = time.monotonic()
+            model = build_model(spec, formulation=formulation)
+            timings["build"] = time.monotonic() - t0
+            probe = _presolve_probe(model, options, timings)
+            if probe.status == "infeasible":
+                return _no_layout(spec, options, probe, [], explain_infeasible, timings, began)
+        generated = _provided_start(spec, options, start_provider, timings)
+        # without a first layout SCIP searches alone in the time left (thesis, §5.5.1): it
+        # finds the small specs' layouts, rarely one of 20 rooms or more
+        spec, rects_start = generated.spec, generated.rects
+        if generated.grown is not None and not options.quiet:
+            print(f"compile: the boundary grew to {generated.grown[0]:g} x {generated.grown[1]:g} m "
+                  f"for this arrangement (--grow-boundary)", file=sys.stderr)
     if spec.arms:
-        return _compile_l_rooms(spec, options, rects_start, start_provider, progress, timings, began, deadline)
+        return _compile_l_rooms(spec, options, rects_start, progress, timings, began, deadline, generated)
     # a verified start polished with nothing searched after: the model needs only the
     # separations of the start's relations (model.settle_separations, in _polish_start)
     checked = (_verified_start(spec, rects_start)
                if options.strategy != "thesis" and not options.search and rects_start is not None else None)
     settle = checked is not None and checked[0] is not None
-    constructing = options.strategy != "thesis" and rects_start is None
-    # the construction's annealing runs need no model: they start while it is built and
-    # probed (1-2 s on a 76-room plan), on the cores that work leaves
-    annealing = start_annealing(spec, options.seed, deadline) if constructing and start_provider is None else None
-    try:
-        t0 = time.monotonic()
-        model = build_model(spec, formulation=formulation, defer_separations=settle)
-        timings["build"] = time.monotonic() - t0
-        if constructing:
-            probe = _presolve_probe(model, options, timings)
-            if probe.status == "infeasible":
-                if annealing is not None:
-                    annealing.close()  # before the explanation, which takes seconds of its own
-                    annealing = None
-                return _no_layout(spec, options, probe, [], explain_infeasible, timings, began)
-            if annealing is not None:
-                # the construction takes the annealing over, and closes it
-                start_provider, annealing = partial(default_start_provider, annealing=annealing), None
-            rects_start = _provided_start(spec, options, start_provider, timings)
-            if rects_start is None and no_start_fallback is not None:
-                return _run_fallback(spec, options, deadline, progress, no_start_fallback)
-    finally:
-        if annealing is not None:
-            annealing.close()
+    t0 = time.monotonic()
+    model = build_model(spec, formulation=formulation, defer_separations=settle)
+    timings["build"] = timings.get("build", 0.0) + time.monotonic() - t0
     rects_start, method = checked if checked is not None else _verified_start(spec, rects_start)
 
     polished: dict[str, Rect] | None = None
@@ -173,7 +141,8 @@ def compile_from_start(
 
     t0 = time.monotonic()
     first = _first_feasible_seconds(outcome, method, timings)
-    best, failures = _best_verified(spec, options, candidates, outcome, method, first, began, formulation)
+    best, failures = _best_verified(spec, options, candidates, outcome, method, first, began, formulation,
+                                    generated=generated)
     timings["verify"] = time.monotonic() - t0
     if best is not None:
         timings["total"] = time.monotonic() - began
@@ -183,8 +152,8 @@ def compile_from_start(
 
 
 def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, Rect] | None,
-                     start_provider: StartProvider | None, progress: ProgressCallback | None,
-                     timings: dict[str, float], began: float, deadline: float) -> CompileResult:
+                     progress: ProgressCallback | None, timings: dict[str, float], began: float,
+                     deadline: float, generated: Generated | None) -> CompileResult:
     """The strategy 'auto' for a spec with L-shaped rooms: the same stages on its boxes.
 
     The thesis' model places one rectangle per room, so it is built on the spec's boxes
@@ -194,10 +163,6 @@ def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, R
     and branches as for any spec; every candidate is verified against the spec itself.
     Without a start there is nothing to build the boxes from: no layout (E902).
     """
-    if rects_start is None:
-        # no fallback takes over when the construction finds nothing (cycle decomposition
-        # solves the thesis' model of rectangles), so it gets the time that would be its
-        rects_start = _provided_start(spec, options, start_provider, timings, share=L_START_SHARE)
     rects_start, method = _verified_start(spec, rects_start)
     if rects_start is None:
         timings["total"] = time.monotonic() - began
@@ -214,7 +179,7 @@ def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, R
     t0 = time.monotonic()
     first = _first_feasible_seconds(outcome, method, timings)
     best, failures = _best_verified(spec, options, candidates, outcome, method, first, began,
-                                    options.formulation, model_spec=boxes)
+                                    options.formulation, model_spec=boxes, generated=generated)
     timings["verify"] = time.monotonic() - t0
     timings["total"] = time.monotonic() - began
     if best is not None:
@@ -244,7 +209,7 @@ def _presolve_probe(model, options: SolveOptions, timings: dict[str, float]) -> 
     construction would spend its whole share of the time limit on a spec that has no layout.
     """
     t0 = time.monotonic()
-    probe = solve(model, replace(options, time_limit=max(0.5, min(5.0, PROBE_SHARE * options.time_limit)),
+    probe = solve(model, replace(options, time_limit=max(0.5, min(5.0, TIME['probe'] * options.time_limit)),
                                  node_limit=0, solution_limit=None, emphasis="default", quiet=True),
                   feasibility_only=True)
     timings["presolve"] = time.monotonic() - t0
@@ -252,26 +217,17 @@ def _presolve_probe(model, options: SolveOptions, timings: dict[str, float]) -> 
 
 
 def _provided_start(spec: Spec, options: SolveOptions, start_provider: StartProvider | None,
-                    timings: dict[str, float], share: float = START_SHARE) -> dict[str, Rect] | None:
-    """The start provider's rectangles (default: the construction), in its share of the time."""
+                    timings: dict[str, float]) -> Generated:
+    """The start provider's first layout (default: the generator), cut off at its share of
+    the time limit."""
     provider = start_provider or default_start_provider
-    share = replace(options, time_limit=max(0.1, share * options.time_limit))
+    share = replace(options, time_limit=max(0.1, TIME["generate"] * options.time_limit))
     t0 = time.monotonic()
-    rects_start = provider(spec, share)
+    found = provider(spec, share)
     timings["start"] = time.monotonic() - t0
-    return rects_start
-
-
-def _run_fallback(spec: Spec, options: SolveOptions, deadline: float,
-                  progress: ProgressCallback | None, no_start_fallback: Fallback) -> CompileResult:
-    """The fallback strategy's result in the time left, its limit diagnostics restated."""
-    left = replace(options, time_limit=max(0.1, deadline - time.monotonic()))
-    result = no_start_fallback(spec, left, progress)
-    if result.layout is None:
-        # the decomposition ran on what the construction left; the limit was the user's
-        status = result.outcome.status if result.outcome is not None else "time_limit"
-        result = replace(result, diagnostics=explain.restate_limit(result.diagnostics, spec, options, status))
-    return result
+    if isinstance(found, Generated):
+        return found
+    return Generated(None if found is None else dict(found), spec, "provided" if found is not None else "")
 
 
 def _verified_start(spec: Spec, rects_start: dict[str, Rect] | None) -> tuple[dict[str, Rect] | None, str]:
@@ -299,7 +255,7 @@ def _polish_start(model, spec: Spec, options: SolveOptions, rects_start: dict[st
         settle_separations(model)  # built with them deferred: the start's relations, fixed
     # the start's relations with their best sizes and places: a much better start for SCIP
     t0 = time.monotonic()
-    share = max(0.2, min(POLISH_SHARE * options.time_limit, deadline - time.monotonic()))
+    share = max(0.2, min(TIME['polish'] * options.time_limit, deadline - time.monotonic()))
     first_polish = polish(model, replace(options, time_limit=share, quiet=True))
     if first_polish.has_solution:
         polished = rects_from_model(model)
@@ -309,7 +265,7 @@ def _polish_start(model, spec: Spec, options: SolveOptions, rects_start: dict[st
     # neighbourhoods of LNS_SIZE rooms only pay off when they are a small part of the spec
     if first_polish.has_solution and len(spec.rooms) > 2 * LNS_SIZE and options.search:
         t0 = time.monotonic()
-        lns_share = LNS_SHARE[len(spec.rooms) <= LNS_SMALL]
+        lns_share = TIME['lns'][len(spec.rooms) <= LNS_SMALL]
         lns_deadline = time.monotonic() + lns_share * max(0.0, deadline - time.monotonic())
         improve_by_neighbourhoods(model, options, deadline=lns_deadline, size=LNS_SIZE, progress=progress)
         polished = rects_from_model(model)
@@ -324,7 +280,7 @@ def _search_whole_model(model, spec: Spec, options: SolveOptions, rects_start: d
     then, if SCIP beat the polished start, its incumbent polished in place."""
     # keep time for polishing SCIP's incumbent; translating the model costs about what
     # building it did
-    reserve = min(POLISH_SHARE * options.time_limit, timings["build"] + 1.0)
+    reserve = min(TIME['polish'] * options.time_limit, timings["build"] + 1.0)
     remaining = max(0.5, deadline - time.monotonic() - reserve)
     start_objective = (objective_of_rects(spec, polished, formulation=model.formulation)
                        if polished is not None else None)
@@ -380,7 +336,8 @@ def _first_feasible_seconds(outcome: SolveOutcome, method: str, timings: dict[st
 def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dict[str, Rect], str]],
                    outcome: SolveOutcome, method: str, first: float | None,
                    began: float, formulation: Formulation,
-                   model_spec: Spec | None = None) -> tuple[tuple[float, Layout, str] | None, list]:
+                   model_spec: Spec | None = None,
+                   generated: Generated | None = None) -> tuple[tuple[float, Layout, str] | None, list]:
     """(objective, layout, status) of the best candidate that passes verification, or None;
     and the violations of the candidates that failed. The objective is the model's (built
     with `formulation`), of `model_spec` when the model was built on another spec (an
@@ -406,6 +363,7 @@ def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dic
             first_feasible_seconds=None if first is None else round(first, 3),
             seed=options.seed,
             method=method,
+            grown_boundary=None if generated is None else generated.grown,
         )
         layout = layout_from_rects(spec, rects, info)
         violations = verify(spec, layout)

@@ -15,7 +15,7 @@ Two sources of variants:
 Each variant stops at a short deterministic rule: its first verified layout, polished with
 its relations fixed (SolveOptions.search off), so the same spec and seed give the same
 bytes and a 50-room variant costs seconds, not the compile's full time limit. A new
-arrangement's first try is quick (QUICK_GEOMETRIES seed geometries, then the seed is given
+arrangement's first try is quick (QUICK_ROUNDS rounds of the generator, then the seed is given
 up); the seeds whose quick try found nothing get their full construction if the quick tries
 run out before N different arrangements are kept.
 
@@ -36,7 +36,6 @@ from itertools import combinations
 from pathlib import Path
 
 from layoutdsl.compile.explain import variants_not_distinct
-from layoutdsl.compile.generate import TOP_CHOICES
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.syntax.ast import Position, Spec
 from layoutdsl.layout import Layout
@@ -144,42 +143,26 @@ def _solve_variant(job: tuple[int, object, tuple[str, float, float] | None, str,
     variant_seed, options, point, source, quick = job
     spec = _SPEC_FOR_WORKERS
     assert spec is not None
-    # one variant per core: no core is spare for annealing beside the construction
-    return _compile_variant(spec, variant_seed, options, point, source, spare_cores=False, quick=quick)
+    return _compile_variant(spec, variant_seed, options, point, source, quick=quick)
 
 
-QUICK_GEOMETRIES = 2
-"""Seed geometries a variant's quick try repairs before its seed is given up for the next
-(see _compile_variant)."""
+QUICK_ROUNDS = 3
+"""Rounds of the generator's schedule a variant's quick try makes before its seed is given
+up for the next (see _compile_variant)."""
 
-
-QUICK_TRY_SECONDS = 2.5
-"""The most the repair of one seed geometry takes in a quick try."""
-
-VARIANT_CHOICES = 6
-"""Choices per room of the greedy placement in a quick try (layoutdsl.compile.generate
-.TOP_CHOICES, 3, elsewhere). Measured on school_wilbraham, `--variants 20` on 2 workers:
-with 3, seeds 0-57 gave 19 and seeds 100-157 only 17 layouts 0.3 apart from one another
-(170 and 164 s); with 6, all 20 from seeds 0-49 and 100-150 (111 and 166 s). The full
-construction keeps 3: its seeds are the hard ones (school_hendersonhighschool, `--variants
-5`: 4 of 5 found in 270 s with 6, 5 in 144 s with 3)."""
+VARIANT_TIME_SHARE = 0.75
+"""Share of a variant's time limit its generator may use before it is cut off."""
 
 
 def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str = "graph",
-                     spare_cores: bool = True, quick: bool = False):
+                     quick: bool = False):
     """(layout, position kept) of one variant, or (None, None).
 
-    `quick`: the construction gives up after QUICK_GEOMETRIES seed geometries instead of at
-    its time limit, each repaired for at most QUICK_TRY_SECONDS and given up as soon as it
-    looks stuck (construct._repair's `quick`: measured on office_floorplanMAIN, seconds per
-    constructed seed 6.4 -> 4.0, and `--throughput` 16 -> 25 variants a minute). Most seeds
-    construct from their first geometry in a second or two, a few only after many (measured
-    on school_wilbraham: 65 % of a minute's variant time went to the 5 slowest of 19 seeds,
-    up to 33 s): another seed is cheaper than those.
+    `quick`: the generator gives up after QUICK_ROUNDS rounds of its schedule instead of
+    its full budget: another seed is cheaper than the slowest ones.
     """
     from layoutdsl.compile import compile_spec
-    from layoutdsl.compile.construct import construct_start
-    from layoutdsl.compile.pipeline import START_SHARE
+    from layoutdsl.compile.generator import generate
 
     began = time.monotonic()
     deadline = began + options.time_limit
@@ -201,11 +184,11 @@ def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str 
         # probe, which translates the whole model to SCIP once more (measured on
         # school_wilbraham: 1.3 of a variant's 5.1 s); the spec's feasibility is not in
         # question for a variant, and one that finds no start gives way to another seed
-        rects = construct_start(variant_spec, seed=variant_seed, randomize=from_hints,
-                                use_hints=from_hints, deadline=time.monotonic() + START_SHARE * limit,
-                                spare_cores=spare_cores, max_geometries=QUICK_GEOMETRIES if quick else None,
-                                try_seconds=QUICK_TRY_SECONDS if quick else None,
-                                choices=VARIANT_CHOICES if quick else TOP_CHOICES, quick=quick)
+        generated = generate(variant_spec, seed=variant_seed, use_hints=from_hints, perturb_hints=from_hints,
+                             deadline=time.monotonic() + VARIANT_TIME_SHARE * limit,
+                             grow_boundary=options.grow_boundary,
+                             max_rounds=QUICK_ROUNDS if quick else None)
+        rects, variant_spec = generated.rects, generated.spec
         if rects is None:
             continue
         variant_options = replace(options, time_limit=max(0.5, limit - (time.monotonic() - attempt_began)),

@@ -203,7 +203,10 @@ class SolveInfo:
     first_feasible_seconds: float | None = None
     seed: int = 0
     method: str = ""
-    """How the first feasible layout was found (e.g. 'construction', 'scip', 'cycles')."""
+    """How the first feasible layout was found (e.g. 'construction', 'scip')."""
+    grown_boundary: tuple[float, float] | None = None
+    """(width, height) the boundary grew to for this arrangement (compile --grow-boundary),
+    None when it kept the spec's."""
     wall_clock_limited: bool = False
     """The time limit (the outer cap) stopped a stage before its deterministic work limits:
     this layout may differ from the one the same spec and seed give on an idle machine
@@ -254,8 +257,13 @@ class Layout:
             rooms=tuple(_placed_room(r) for r in data["rooms"]),
             portals=tuple(Portal(**p) for p in data["portals"]),
             obstacles=tuple(PlacedObstacle(**o) for o in data.get("obstacles", ())),
-            solve=SolveInfo(**solve) if solve else None,
+            solve=_solve_info(solve) if solve else None,
         )
+
+
+def _solve_info(data: dict) -> SolveInfo:
+    grown = data.get("grown_boundary")
+    return SolveInfo(**{**data, "grown_boundary": tuple(grown) if grown is not None else None})
 
 
 def _placed_room(data: dict) -> PlacedRoom:

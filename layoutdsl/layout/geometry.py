@@ -7,9 +7,10 @@ a start is verified exactly as a compiled layout is.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import dataclass
 
 from layoutdsl.layout import WELD, Layout, PlacedObstacle, PlacedRoom, SolveInfo, make_portal, round_layout_number
-from layoutdsl.syntax.ast import Spec, arm_id
+from layoutdsl.syntax.ast import Room, Spec, arm_id
 
 Rect = tuple[float, float, float, float]
 """(x, y, w, h): bottom-left corner and size, metres, boundary frame."""
@@ -75,3 +76,45 @@ def layout_from_rects(spec: Spec, rects: Mapping[str, Rect], info: SolveInfo | N
         obstacles=obstacles,
         solve=info,
     )
+
+
+@dataclass(frozen=True, slots=True)
+class RoomSizes:
+    """A room's size bounds in orientation-free form, as (5.4)-(5.6) read them."""
+
+    lo_long: float
+    hi_long: float
+    lo_short: float
+    hi_short: float
+    min_ar: float
+    max_ar: float
+    corridor: bool
+    target_long: float
+    target_short: float
+
+    @staticmethod
+    def of(room: Room) -> RoomSizes:
+        """Bounds of the long and the short side, whichever axis the room lies along."""
+        return RoomSizes(
+            lo_long=max(room.min_w, room.min_h),
+            hi_long=max(room.max_w, room.max_h),
+            lo_short=min(room.min_w, room.min_h),
+            hi_short=min(room.max_w, room.max_h),
+            min_ar=room.min_ar,
+            max_ar=room.max_ar,
+            corridor=room.is_corridor,
+            target_long=max(room.target_w, room.target_h),
+            target_short=min(room.target_w, room.target_h),
+        )
+
+    def bounds(self, long_along_x: bool) -> tuple[float, float, float, float]:
+        """(w_lo, w_hi, h_lo, h_hi) for the given orientation."""
+        if long_along_x:
+            return self.lo_long, self.hi_long, self.lo_short, self.hi_short
+        return self.lo_short, self.hi_short, self.lo_long, self.hi_long
+
+    def targets(self, long_along_x: bool) -> tuple[float, float]:
+        """(target w, target h) for the given orientation."""
+        if long_along_x:
+            return self.target_long, self.target_short
+        return self.target_short, self.target_long

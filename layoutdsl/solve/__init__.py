@@ -88,9 +88,9 @@ class SolveOptions:
     """After the (polished) first layout, search for better ones (neighbourhoods, then
     branch-and-bound) until a limit. Off: the polished first layout is the answer, a short
     deterministic stopping rule (variants, issue 11)."""
-    cycles_fallback: bool = True
-    """auto: when the construction finds no start and the room graph has cycles, spend the
-    time left on cycle decomposition (§5.5.3). Off inside the decomposition's own solves."""
+    grow_boundary: bool = False
+    """auto: the generator may grow a given boundary that is too tight for an arrangement
+    (compile --grow-boundary); the layout's SolveInfo.grown_boundary reports the growth."""
 
     @staticmethod
     def from_settings(settings: Settings, **overrides) -> SolveOptions:

@@ -1,4 +1,4 @@
-"""Small synthetic specs for the construction tests (feasible by construction)."""
+"""Small synthetic specs for the generator tests (feasible by construction)."""
 
 from __future__ import annotations
 
@@ -59,7 +59,7 @@ def ladder_spec() -> Spec:
 
 
 def ring_block_spec() -> Spec:
-    """A ring of twelve rooms (one block of CORE_BLOCK_ROOMS), a triangle of rooms beside it
+    """A ring of twelve rooms, a triangle of rooms beside it
     (a small block), rooms hanging off both (H3 on the boundary), and a room with no door."""
     ring = [f"K{i}" for i in range(12)]
     rooms = [room(name, 4.0, 4.0) for name in ring]

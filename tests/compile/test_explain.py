@@ -65,28 +65,6 @@ def test_on_boundary_flag_can_be_part_of_a_conflict():
     assert {(g.kind, g.key) for g in groups} == {("onB", "A"), ("position", 0), ("size", "A")}
 
 
-def test_e902_after_the_cycle_fallback_states_the_users_limit(monkeypatch):
-    """The fallback decomposes in the time the construction left; E902 must name the whole limit."""
-    from layoutdsl.compile import compile_spec, cycles, explain, pipeline
-
-    triangle = spec(
-        "triangle", [room(n, (2, 3, 2.5), (2, 3, 2.5)) for n in "ABC"], 12, 12,
-        adjacencies=[Adjacency("A", "B", 0.9, "e"), Adjacency("B", "C", 0.9, "e"), Adjacency("A", "C", 0.9, "e")])
-    seen = []
-
-    def decompose(cycle_spec, options, progress=None):
-        seen.append(options.time_limit)
-        wrong = explain.no_layout_in_time(cycle_spec, options)
-        return pipeline.CompileResult(None, [wrong], "no_layout")
-
-    monkeypatch.setattr(cycles, "compile_with_cycles", decompose)
-    options = replace(SolveOptions(), time_limit=60.0, quiet=True)
-    result = compile_spec(triangle, options, start_provider=lambda _spec, _share: None)
-    assert seen and seen[0] < 60.0
-    assert [d.code for d in result.diagnostics] == ["E902"]
-    assert "time limit of 60 s" in result.diagnostics[0].message
-
-
 def test_restate_limit_rewrites_only_e902():
     from layoutdsl.compile import explain
 

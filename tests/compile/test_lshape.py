@@ -8,7 +8,7 @@ import pytest
 
 from dataclasses import replace
 
-from layoutdsl.compile.lshape import JOIN_OPTIONS, arm_sizes, boxes_spec, join_option, joined_box, seed_arms
+from layoutdsl.layout.lshape import JOIN_OPTIONS, arm_sizes, boxes_spec, join_option, joined_box, seed_arms
 from layoutdsl.syntax.ast import Adjacency, Arm, Boundary, Room, Spec, arm_id
 
 
@@ -59,7 +59,7 @@ def test_seed_arms_joins_the_arm_where_it_overlaps_nothing() -> None:
 def test_an_ls_other_box_is_kept_exactly_a_wall_from_its_neighbour() -> None:
     """R0 meets C0 on the arm; the corridor's own box may lie on the same line (the L's
     outer face is flush), so R0 and that box get no extra safety margin."""
-    from layoutdsl.compile.lshape import beside_pairs
+    from layoutdsl.layout.lshape import beside_pairs
 
     spec = _spec()
     geometry = {"C0": (0.0, 0.0, 10.0, 2.0), arm_id("C0"): (0.0, 2.0, 2.0, 6.0), "R0": (2.2, 4.5, 4.0, 4.0)}

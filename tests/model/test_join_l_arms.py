@@ -7,7 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from layoutdsl.compile import lshape
+from layoutdsl.layout import lshape
 from layoutdsl.layout.geometry import layout_from_rects
 from layoutdsl.layout.verify import verify
 from layoutdsl.model import build_model, rects_from_model, warm_start_from_rects

@@ -1,0 +1,45 @@
+"""Every limit a compile runs under, in one place.
+
+WORK holds the work limits that decide results (moves, rounds, nodes): the same spec and
+seed give the same layout on an idle machine and a loaded one. TIME holds the shares of the
+wall-clock time limit: they only ever cut a stage off (the compile then says so), never
+change what a stage that finishes returns.
+"""
+
+from __future__ import annotations
+
+WORK = {
+    # the schedule (schedule.py)
+    "moves_per_room": 1500,      # moves per room in a chain of the first round
+    "round_growth": 2.0,         # each round's chains make this many times the moves of the last
+    "max_moves": 3_000_000,      # at most this many moves a chain
+    "max_rounds": 6,             # rounds before the generator gives up
+    "chains": 2,                 # chains side by side in a round (one per core measured on)
+    "start_temperature": 0.02,   # x (outline width + height): metres of cost at the first move
+    "end_temperature": 0.0001,   # ... at the last move
+    "zero_stop": 0.3,            # a chain at violation 0 stops after this share of its moves
+    "give_up_at": 0.6,           # a chain still more than give_up_m from a layout at this
+    "give_up_m": 5.0,            #   share of its moves stops there
+    # the sizing stage (layoutdsl.solve.relations): a round's MIP stops after this many nodes
+    "repair_round_nodes": 200,
+    "repair_max_violation_m": 4.0,  # a round's best state is sized when at most this far from a layout
+    "repair_rounds": 4,          # repair rounds of an annealed state before the next round anneals
+    "repair_stalls": 1,          # ... or stalled rounds
+    "final_nodes": 2000,         # the final sizing LP/MIP with every relation fixed
+}
+
+TIME = {
+    "generate": 0.8,   # share of the time limit the generator may use before it is cut off
+    "probe": 0.05,     # SCIP's presolve-only infeasibility probe (at most 5 s)
+    "polish": 0.1,     # polishing the generated layout with its relations fixed (solve.polish)
+    "lns": {True: 0.7, False: 0.9},  # share of what is left for neighbourhood search, for
+                                     # specs of at most / more than LNS_SMALL rooms
+}
+
+LNS_SMALL = 20
+"""Rooms up to which branch-and-bound over the whole model still closes the gap after the
+neighbourhood search (school_fig42, 17 rooms: 1.6 % in 12 s; 76-105 rooms: nothing)."""
+
+LNS_SIZE = 4
+"""Rooms freed per neighbourhood (school_fig42, 10 s: 4 rooms reached 29.1, 6 rooms 29.5,
+8 rooms 32.0 from a polished start of 35.7)."""

@@ -1,0 +1,79 @@
+"""The cost: one number per packed state, in metres, that the schedule drives to zero.
+
+    violation = OVERFLOW_WEIGHT   x extent of the packing beyond the outline
+              + ADJACENCY_WEIGHT  x sum over doors of (gap between the two rooms
+                                                     + shortfall of their shared wall)
+              + BOUNDARY_WEIGHT   x sum over rooms that must open to the outside (onB)
+                                    of their distance from the outer boundary
+    cost      = violation
+              + COMPACT_WEIGHT    x bounding-box area / outline area   (few enclosed voids)
+              + RESIZE_WEIGHT     x metres the sides are from their targets (schedule.py)
+
+A violation of 0 is a packing that meets every door inside the outline with every entrance
+on the outside: the relation LP of the sizing stage (layoutdsl.solve.relations) is then
+feasible from its first round. The outer boundary is the spec's outline when it has one,
+else the packing's own bounding box (the boundary the tool chooses is drawn round it).
+"""
+
+from __future__ import annotations
+
+from numba import njit
+
+ADJACENCY_WEIGHT = 1.0
+"""Per metre of gap between a door's rooms, or of missing shared wall."""
+
+OVERFLOW_WEIGHT = 2.0
+"""Per metre the packing sticks out of the spec's outline."""
+
+CHOSEN_OVERFLOW_WEIGHT = 0.1
+"""...of the outline the tool chose (a spec without a boundary): a guide towards its size
+and shape, not a limit, since the boundary is drawn round the layout afterwards."""
+
+BOUNDARY_WEIGHT = 1.0
+"""Per metre a room that must open to the outside (onB) is from the outer boundary."""
+
+COMPACT_WEIGHT = 0.02
+"""Per (bounding box area / outline area): compact buildings, with few enclosed voids."""
+
+RESIZE_WEIGHT = 0.05
+"""Per metre a side is from its target length: rooms stay near their target sizes."""
+
+
+@njit(cache=True)
+def violation(work, edge_a, edge_b, need, on_boundary, width, height, wall, outline_given, per_edge):
+    """(violation in metres, bounding box area) of a packing (representation.pack_state's
+    `work`); per_edge[k] gets door k's share, which the moves read to pick unmet doors.
+    `outline_given`: onB is measured to the outline (width x height), else to the packing's
+    bounding box, the boundary the tool will draw round it."""
+    n = work.x.shape[0]
+    pos_p, pos_q = work.pos_p, work.pos_q
+    x, y, w, h = work.x, work.y, work.w, work.h
+    right = 0.0
+    top = 0.0
+    for i in range(n):
+        right = max(right, x[i] + w[i])
+        top = max(top, y[i] + h[i])
+    for k in range(edge_a.shape[0]):
+        a = edge_a[k]
+        b = edge_b[k]
+        if pos_q[a] > pos_q[b]:
+            a, b = b, a
+        # now a comes first in Q: a is left of b or below it
+        if pos_p[a] < pos_p[b]:
+            gap = x[b] - (x[a] + w[a] + wall)
+            overlap = min(y[a] + h[a], y[b] + h[b]) - max(y[a], y[b])
+        else:
+            gap = y[b] - (y[a] + h[a] + wall)
+            overlap = min(x[a] + w[a], x[b] + w[b]) - max(x[a], x[b])
+        per_edge[k] = abs(gap) + max(0.0, need[k] - overlap)
+    outer_w = width if outline_given else right
+    outer_h = height if outline_given else top
+    away = 0.0
+    for i in range(n):
+        if on_boundary[i]:
+            away += min(min(x[i], y[i]),
+                        min(max(0.0, outer_w - x[i] - w[i]), max(0.0, outer_h - y[i] - h[i])))
+    overflow = max(0.0, right - width) + max(0.0, top - height)
+    overflow_weight = OVERFLOW_WEIGHT if outline_given else CHOSEN_OVERFLOW_WEIGHT
+    return (overflow_weight * overflow + ADJACENCY_WEIGHT * per_edge.sum() + BOUNDARY_WEIGHT * away,
+            right * top)

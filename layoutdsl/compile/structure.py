@@ -1,0 +1,79 @@
+"""What cannot be drawn: room graphs no arrangement of the spec's room shapes realises.
+
+Checked before the generator runs, from the room graph alone (rooms as nodes, doors as
+edges). A non-planar graph never gets here: the checks before compile reject it (E215,
+layoutdsl.check, naming the rooms of a Kuratowski subgraph). What is left is what the
+spec's room shapes cannot draw:
+
+- four rooms joined pairwise (a K4) none of which is L-shaped (E908): no four rectangles
+  pairwise share a wall of positive length (three meet pairwise only around a point, and
+  the fourth cannot touch all three), while one L-room wrapping two of the others can.
+
+Separating triangles (three rooms joined pairwise with rooms both inside and outside the
+triangle) are drawable with rectangles when the triangle's rooms may meet around a point;
+they are left to the generator.
+"""
+
+from __future__ import annotations
+
+from itertools import combinations
+
+import networkx as nx
+
+from layoutdsl.compile.explain import E908
+from layoutdsl.diagnostics import Diagnostic
+from layoutdsl.diagnostics.source import Span
+from layoutdsl.syntax.ast import Spec
+
+_FALLBACK_SPAN = Span(1, 1, 1, 2)
+
+
+def room_graph(spec: Spec) -> nx.Graph:
+    """The spec's rooms as nodes (in the spec's order), its adjacencies as edges."""
+    graph = nx.Graph()
+    graph.add_nodes_from(room.id for room in spec.rooms)
+    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
+    return graph
+
+
+def undrawable(spec: Spec) -> list[Diagnostic]:
+    """An E908 diagnostic for every four rooms joined pairwise that must all be rectangles;
+    empty when the room graph may be drawable."""
+    l_rooms = {arm.room for arm in spec.arms}
+    return [_k4_diagnostic(spec, group) for group in rectangle_k4s(room_graph(spec), l_rooms)]
+
+
+def rectangle_k4s(graph: nx.Graph, l_rooms: set[str]) -> list[tuple[str, ...]]:
+    """Every four rooms joined pairwise none of which may be L-shaped (node order of the
+    graph): cliques of four or more give each of their four-room subsets."""
+    order = {node: i for i, node in enumerate(graph.nodes)}
+    found: set[tuple[str, ...]] = set()
+    for clique in nx.find_cliques(graph):
+        if len(clique) < 4:
+            continue
+        for four in combinations(sorted(clique, key=order.__getitem__), 4):
+            if not l_rooms & set(four):
+                found.add(four)
+    return sorted(found, key=lambda four: [order[r] for r in four])
+
+
+def _k4_diagnostic(spec: Spec, four: tuple[str, ...]) -> Diagnostic:
+    return Diagnostic(
+        code=E908,
+        message=f"rooms {', '.join(four)} are joined pairwise: four rectangles cannot all share walls",
+        filename=spec.path, span=_adjacency_span(spec, list(four)),
+        label="four rooms joined pairwise",
+        help=f"give one of them an L shape (an `arms` line, e.g. `{four[0]} ...` for a corridor), "
+             "or remove one of their six adjacencies")
+
+
+def _adjacency_span(spec: Spec, rooms: list[str]) -> Span:
+    """The first adjacency line between two of the rooms, else the first room's line."""
+    wanted = set(rooms)
+    for adj in spec.adjacencies:
+        if adj.a in wanted and adj.b in wanted and getattr(adj, "span", None) is not None:
+            return adj.span
+    for room in spec.rooms:
+        if room.id in wanted and getattr(room, "span", None) is not None:
+            return room.span
+    return _FALLBACK_SPAN

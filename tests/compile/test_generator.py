@@ -1,0 +1,109 @@
+"""The generator (layoutdsl.compile.generator) through its public functions: every layout
+it returns is checked by independent code (layoutdsl.layout.verify, and plain geometry
+below), and the same spec and seed give the same rectangles."""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+
+import pytest
+
+from layoutdsl.compile import compile_spec
+from layoutdsl.compile.generator import generate
+from layoutdsl.layout.geometry import layout_from_rects
+from layoutdsl.layout.verify import verify
+from layoutdsl.solve import SolveOptions
+from layoutdsl.syntax.ast import Boundary, Spec
+
+from tests.compile._specs import adjacent, cycle_spec, ladder_spec, ring_block_spec, room, tree_spec
+
+SPECS = [tree_spec, cycle_spec, ladder_spec, ring_block_spec]
+
+
+def _touching(a, b, walldim: float, need: float) -> bool:
+    """Independent door test: the rectangles lie exactly a wall apart along one axis and
+    overlap by at least `need` along the other."""
+    ax, ay, aw, ah = a
+    bx, by, bw, bh = b
+    gap_x = max(bx - ax - aw, ax - bx - bw)
+    gap_y = max(by - ay - ah, ay - by - bh)
+    overlap_x = min(ax + aw, bx + bw) - max(ax, bx)
+    overlap_y = min(ay + ah, by + bh) - max(ay, by)
+    return (abs(gap_x - walldim) < 1e-5 and overlap_y >= need - 1e-5) or (
+        abs(gap_y - walldim) < 1e-5 and overlap_x >= need - 1e-5)
+
+
+@pytest.mark.parametrize("make", SPECS, ids=[m.__name__ for m in SPECS])
+def test_generated_layouts_verify_and_meet_every_door(make):
+    spec = make()
+    generated = generate(spec, seed=0)
+    assert generated.rects is not None
+    assert verify(generated.spec, layout_from_rects(generated.spec, generated.rects)) == []
+    walldim = spec.settings.walldim
+    for adj in spec.adjacencies:
+        need = adj.door / spec.settings.door_utilization
+        assert _touching(generated.rects[adj.a], generated.rects[adj.b], walldim, need), (adj.a, adj.b)
+
+
+def test_same_spec_and_seed_give_the_same_rectangles():
+    spec = ladder_spec()
+    first = generate(spec, seed=3)
+    second = generate(spec, seed=3)
+    assert first.rects == second.rects
+    assert (first.rounds, first.moves) == (second.rounds, second.moves)
+
+
+def test_same_seed_gives_the_same_layout_file_apart_from_timing():
+    spec = cycle_spec()
+    options = SolveOptions(time_limit=60, quiet=True, search=False, seed=1)
+
+    def without_timing(result) -> dict:
+        data = json.loads(result.layout.to_json())
+        for key in ("seconds", "first_feasible_seconds"):
+            data["solve"].pop(key, None)
+        return data
+
+    assert without_timing(compile_spec(spec, options)) == without_timing(compile_spec(spec, options))
+
+
+def test_other_seeds_give_other_arrangements():
+    spec = tree_spec()
+    layouts = {tuple(sorted(generate(spec, seed=seed).rects.items())) for seed in range(3)}
+    assert len(layouts) > 1
+
+
+def test_a_room_that_must_open_outside_touches_the_boundary():
+    base = cycle_spec()
+    rooms = tuple(dataclasses.replace(r, on_boundary=True) if r.id in ("C", "G") else r for r in base.rooms)
+    spec = dataclasses.replace(base, rooms=rooms)
+    generated = generate(spec, seed=0)
+    assert generated.rects is not None
+    width, height = generated.spec.boundary.w, generated.spec.boundary.h
+    for room_id in ("C", "G"):
+        x, y, w, h = generated.rects[room_id]
+        assert min(x, y, width - x - w, height - y - h) < 1e-5, room_id
+
+
+def test_four_corridors_joined_pairwise_are_reported_with_their_names():
+    corridors = [room(f"C{i}", 8.0, 2.0, rtype="C", var=0.4) for i in range(4)]
+    pairs = [adjacent(f"C{i}", f"C{j}", kind="i") for i in range(4) for j in range(i + 1, 4)]
+    spec = Spec("k4", tuple(corridors), Boundary(30.0, 30.0), tuple(pairs))
+    result = compile_spec(spec, SolveOptions(time_limit=10, quiet=True))
+    assert result.layout is None
+    assert [d.code for d in result.diagnostics] == ["E908"]
+    assert all(f"C{i}" in result.diagnostics[0].message for i in range(4))
+
+
+def test_a_too_tight_boundary_grows_when_allowed_and_says_so():
+    base = tree_spec()
+    tight = dataclasses.replace(base, boundary=Boundary(16.0, 12.0))
+    generated = generate(tight, seed=0, grow_boundary=True)
+    assert generated.rects is not None
+    assert generated.grown is not None
+    grown_w, grown_h = generated.grown
+    assert grown_w >= 16.0 and grown_h >= 12.0 and (grown_w > 16.0 or grown_h > 12.0)
+    assert verify(generated.spec, layout_from_rects(generated.spec, generated.rects)) == []
+    result = compile_spec(tight, SolveOptions(time_limit=30, quiet=True, search=False, grow_boundary=True))
+    assert result.layout is not None
+    assert result.layout.solve.grown_boundary == (result.layout.width, result.layout.height)
