@@ -47,16 +47,27 @@ def cli_page() -> str:
     return "\n".join(parts) + "\n"
 
 
+INPUT_SUFFIXES = (".lay", ".xml", ".csv", ".json", ".graphml")
+"""What a snapshot's input can be: a spec, a building XML plan or a room graph."""
+LANGUAGES = {".xml": "xml", ".json": "json", ".graphml": "xml"}
+
+
 def snapshot(code: str) -> str | None:
-    """The first golden rendering of `code` under tests/diagnostics/, with the spec it comes from."""
-    for rendered in sorted(SNAPSHOTS.glob(f"{code}_*.txt")):
-        spec = rendered.with_suffix(".lay")
-        if not spec.exists():
+    """The first golden rendering of `code` under tests/diagnostics/ (any folder), with the
+    input it comes from, as the test suite checks it."""
+    for rendered in sorted(SNAPSHOTS.rglob(f"{code}_*.txt")):
+        inputs = [rendered.with_suffix(suffix) for suffix in INPUT_SUFFIXES]
+        source = next((path for path in inputs if path.is_file()), None)
+        if source is None:
             continue
+        text = source.read_text(encoding="utf-8", errors="replace").rstrip()
+        if len(text.splitlines()) > 60:
+            continue  # a long input would bury the page; the snapshot's own file has it
+        relative = rendered.relative_to(ROOT).as_posix()
         return (
             "## What it looks like\n\n"
-            f"`layoutdsl lint {spec.name}` on\n\n```text\n{spec.read_text(encoding='utf-8').rstrip()}\n```\n\n"
-            f"prints (the test suite's snapshot `tests/diagnostics/{rendered.name}`)\n\n"
+            f"For the input `{source.name}`\n\n```{LANGUAGES.get(source.suffix, 'text')}\n{text}\n```\n\n"
+            f"layoutdsl prints (the test suite's snapshot `{relative}`)\n\n"
             f"```text\n{rendered.read_text(encoding='utf-8').rstrip()}\n```\n"
         )
     return None
