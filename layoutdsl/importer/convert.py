@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import PurePath
 
 from layoutdsl.syntax.ast import Adjacency, Arm, Boundary, Hint, Room, Settings, Spec
@@ -213,8 +213,13 @@ def convert(
         if room_id in door_rooms and max(sides.max_w, sides.max_h) < door_side:
             widened = True
             _widen_for_door(sides, door_side, door, room_id, label, space, filename, diagnostics)
-        rooms.append(_rounded_room(room_id, rtype, label, sides, var_plus, var_minus, options,
-                                   door_side if widened else None))
+        room = _rounded_room(room_id, rtype, label, sides, var_plus, var_minus, options,
+                             door_side if widened else None)
+        if opens_outside(rtype, label):
+            # an entrance opens to the outside in every original plan (31 of 31 over the 24
+            # plans): the generator must keep it on the boundary (onB, the thesis' 5.12)
+            room = replace(room, on_boundary=True)
+        rooms.append(room)
         if options.hints:
             hints.append(_hint(space, room_id, frame, fit.first if fit is not None else None))
 
@@ -227,6 +232,12 @@ def convert(
         arms=tuple(arms),
     )
     return spec, diagnostics
+
+
+def opens_outside(rtype: str, label: str) -> bool:
+    """Whether an imported room must open to the outside: an entrance (type E, labelled
+    ENTRANCE; stairs and lifts, also type E, need not)."""
+    return rtype == "E" and "ENTRANCE" in label.upper()
 
 
 def _l_fit(space: Space, options: ImportOptions, metres_per_unit: float) -> LFit | None:
