@@ -98,7 +98,7 @@ def _corridors_lengthened(spec: Spec, sides: dict[str, tuple[float, float]],
         if not room.is_corridor or not neighbours[room.id]:
             continue
         if room.id.endswith(ARM_SUFFIX) or arm_id(room.id) in neighbours:
-            # an L-room's box and arm are drawn as two rooms (compile.lshape.seeds_spec)
+            # an L-room's box and arm are drawn as two rooms (layout.lshape.seeds_spec)
             # joined later at their target shape: measured on school_hendersonhighschool,
             # whose hub corridor is an L, lengthened they left no seed geometry repairable
             continue

@@ -157,7 +157,7 @@ def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, R
     """The strategy 'auto' for a spec with L-shaped rooms: the same stages on its boxes.
 
     The thesis' model places one rectangle per room, so it is built on the spec's boxes
-    (compile.lshape.boxes_spec: each L-room's arm a room of its own, each adjacency of an L
+    (layout.lshape.boxes_spec: each L-room's arm a room of its own, each adjacency of an L
     on the box the start realises it with) with each L's two boxes joined as the start
     joins them (model.equations.join_l_arms). SCIP then polishes, searches neighbourhoods
     and branches as for any spec; every candidate is verified against the spec itself.

@@ -92,13 +92,12 @@ def seeds_spec(spec: Spec) -> Spec:
     """The spec the seed geometries are drawn for: each L-room's arm a room of its own,
     hung off the room's box by a door as wide as the arm's narrow side at its least.
 
-    So the generator (compile.generate) places the arm with the rest, in the space it keeps
-    free around the box, and counts its area when it decides how tightly to pack; an arm
-    added afterwards beside a box whose sides the neighbours already took overlaps them
-    (measured: most of the extra repair rounds of L-specs, issue 14). `seed_arms` then
-    joins each arm to its box nearest where it was drawn. With hints, each arm's hint is
-    where `seed_arms` puts it beside its room's hint (the arm's place in the original plan
-    is not in the spec).
+    So the generator (layoutdsl.compile.generator) packs the arm with the rest, and counts
+    its area when it decides how tightly to pack; an arm added afterwards beside a box whose
+    sides the neighbours already took overlaps them (measured: most of the extra repair
+    rounds of L-specs, issue 14). `seed_arms` then joins each arm to its box nearest where
+    it was drawn. With hints, each arm's hint is where `seed_arms` puts it beside its room's
+    hint (the arm's place in the original plan is not in the spec).
     """
     rooms_by_id = {room.id: room for room in spec.rooms}
     armed = {arm.room: arm for arm in spec.arms if arm.room in rooms_by_id}
