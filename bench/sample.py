@@ -55,9 +55,9 @@ def split(files: list[Path]) -> tuple[list[Path], list[Path]]:
     return files[0::2], files[1::2]
 
 
-def sampled_graphs(grammar, sizes, count: int, seed: int, like: str = "any") -> list[nx.Graph]:
+def sampled_graphs(grammar, sizes, count: int, seed: int, like: str = "any", drawn: bool = True) -> list[nx.Graph]:
     """N sampled graphs with each room's area (m²) from its spec's target sides."""
-    sampler = SpecSampler(grammar, like, sizes, seed=seed)
+    sampler = SpecSampler(grammar, like, sizes, seed=seed, drawn_sizes=drawn)
     graphs = []
     for index in range(1, count + 1):
         sample = sampler.sample(index)
@@ -155,10 +155,10 @@ def novelty_lines(samples: list[nx.Graph], train: list[nx.Graph], test: list[nx.
     ]
 
 
-def compile_snapshot(count: int, seed: int, time_limit: float) -> list[str]:
+def compile_snapshot(count: int, seed: int, time_limit: float, drawn: bool = True) -> list[str]:
     """Compile the first `count` samples of the shipped model, one after the other."""
     layoutdsl = Path(sys.executable).parent / "layoutdsl"
-    sampler = SpecSampler(load_grammar(), "any", seed=seed)
+    sampler = SpecSampler(load_grammar(), "any", seed=seed, drawn_sizes=drawn)
     rows, firsts, ok = [], [], 0
     with tempfile.TemporaryDirectory(prefix="bench-sample-") as folder:
         for index in range(1, count + 1):
@@ -205,41 +205,48 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--compile", type=int, default=0, metavar="K", help="also compile K specs of the shipped model")
     parser.add_argument("--time-limit", type=float, default=60.0, help="per compile (default 60)")
+    parser.add_argument("--typical-sizes", action="store_true",
+                        help="give sampled rooms each label's typical sizes instead of drawn ones")
+    parser.add_argument("--skip-realism", action="store_true", help="only the compile snapshot")
     parser.add_argument("--out", help="also write the report to this file")
     args = parser.parse_args(argv)
 
-    files = sorted(Path(args.plans).glob("*.xml"))
-    if len(files) < 4:
-        parser.error(f"{args.plans} holds {len(files)} plans; the split needs at least 4")
-    train_files, test_files = split(files)
-    began = time.monotonic()
-    train_plans, test_plans = read_corpus(train_files), read_corpus(test_files)
-    grammar = fit_grammar(train_plans, source="bench/sample.py training half")
-    sizes = fit_model(train_files, corpus="bench/sample.py training half")
-    samples = sampled_graphs(grammar, sizes, args.samples, args.seed)
-    sampled_seconds = time.monotonic() - began
-    train = [p.graph for p in train_plans]
-    test = [p.graph for p in test_plans]
-
-    lines = [
-        f"bench/sample.py at commit {git_commit()}: {args.samples} samples, seed {args.seed}, like any",
-        f"train ({len(train_files)}): {', '.join(p.stem for p in train_files)}",
-        f"test  ({len(test_files)}): {', '.join(p.stem for p in test_files)}",
-        f"grammar and size model fitted on the training half only; fit + {args.samples} samples "
-        f"in {sampled_seconds:.1f} s (shared 2-core machine, under load)",
-        "",
-        "MMD² as GraphRNN (Gaussian kernel on total variation; σ = 1, clustering σ = 0.1):",
-    ]
-    table, passed = realism_table(train, test, samples)
-    lines += table
-    lines.append(f"acceptance (every statistic <= {ACCEPT_RATIO:g} x baseline): {'met' if passed else 'NOT met'}")
-    lines += ["", "means:"] + means_table({"train": train, "test": test, "samples": samples})
-    lines += ["", "novelty:"] + novelty_lines(samples, train, test)
+    sizing = "typical sizes" if args.typical_sizes else "drawn sizes"
+    lines: list[str] = []
+    passed = True
+    if not args.skip_realism:
+        files = sorted(Path(args.plans).glob("*.xml"))
+        if len(files) < 4:
+            parser.error(f"{args.plans} holds {len(files)} plans; the split needs at least 4")
+        train_files, test_files = split(files)
+        began = time.monotonic()
+        train_plans, test_plans = read_corpus(train_files), read_corpus(test_files)
+        grammar = fit_grammar(train_plans, source="bench/sample.py training half")
+        sizes = fit_model(train_files, corpus="bench/sample.py training half")
+        samples = sampled_graphs(grammar, sizes, args.samples, args.seed, drawn=not args.typical_sizes)
+        sampled_seconds = time.monotonic() - began
+        train = [p.graph for p in train_plans]
+        test = [p.graph for p in test_plans]
+        lines += [
+            f"bench/sample.py at commit {git_commit()}: {args.samples} samples, seed {args.seed}, like any, {sizing}",
+            f"train ({len(train_files)}): {', '.join(p.stem for p in train_files)}",
+            f"test  ({len(test_files)}): {', '.join(p.stem for p in test_files)}",
+            f"grammar and size model fitted on the training half only; fit + {args.samples} samples "
+            f"in {sampled_seconds:.1f} s (shared 2-core machine, under load)",
+            "",
+            "MMD² as GraphRNN (Gaussian kernel on total variation; σ = 1, clustering σ = 0.1):",
+        ]
+        table, passed = realism_table(train, test, samples)
+        lines += table
+        lines.append(f"acceptance (every statistic <= {ACCEPT_RATIO:g} x baseline): {'met' if passed else 'NOT met'}")
+        lines += ["", "means:"] + means_table({"train": train, "test": test, "samples": samples})
+        lines += ["", "novelty:"] + novelty_lines(samples, train, test)
     if args.compile:
         lines += ["", f"compile snapshot at commit {git_commit()}: the first {args.compile} specs of "
-                  f"`layoutdsl sample --like any --seed {args.seed}` (shipped model), one at a time, "
-                  f"shared 2-core machine under other agents' load:"]
-        lines += compile_snapshot(args.compile, args.seed, args.time_limit)
+                  f"`layoutdsl sample --like any --seed {args.seed}{' --typical-sizes' if args.typical_sizes else ''}` "
+                  f"(shipped model, {sizing}), each `layoutdsl compile --time-limit {args.time_limit:g}`, one at a "
+                  f"time, shared 2-core machine under other agents' load:"]
+        lines += compile_snapshot(args.compile, args.seed, args.time_limit, drawn=not args.typical_sizes)
     report = "\n".join(lines) + "\n"
     print(report, end="")
     if args.out:

@@ -8,7 +8,8 @@ One sample, given a seeded `random.Random`:
    OWN_SHARE the template's next one (its profiles in a shuffled order, each used once),
    else one of any plan of the kind.
 3. Backbone: a uniformly random tree with the profiles' degrees (a shuffled Prüfer sequence;
-   degrees are nudged so that they sum to 2(n - 1)). Corridor-to-corridor edges are
+   degrees are nudged so that they sum to 2(n - 1), the missing ones going to labels that
+   join corridors in real plans). Corridor-to-corridor edges are
    openings at the template's rate.
 4. Bridges (clusters on two corridors or more) at the template's rate per corridor, on
    corridors as far apart in the backbone as in their plan; cycles among corridors at the
@@ -48,6 +49,9 @@ mixes plans more."""
 MAX_ATTEMPTS = 200
 """Draws per sample before giving up (in practice a handful at most)."""
 
+CONNECTOR_FLOOR = 0.02
+"""Added to every label's share of corridor-joining spaces (connector_shares)."""
+
 PLACEMENT_TRIES = 4
 """Places tried for a bridge or a corridor cycle before dropping it."""
 
@@ -76,6 +80,7 @@ class Sampler:
             kinds = ", ".join(grammar.kinds) or "none"
             raise SampleError(f"the model has no plan of kind `{like}` (it has: {kinds}, or `any`)")
         self._pools: dict[str, tuple[list[CorridorProfile], list[Cluster], float]] = {}
+        self._connectors: dict[str, dict[str, float]] = {}
         self.novelty = NoveltyCheck(grammar.training_graphs())
 
     def _pool(self, kind: str) -> tuple[list[CorridorProfile], list[Cluster], float]:
@@ -88,6 +93,11 @@ class Sampler:
             openings = sum(p.corridor_openings for p in plans) / edges if edges else 0.0
             self._pools[kind] = (profiles, bridges, openings)
         return self._pools[kind]
+
+    def _connects(self, kind: str) -> dict[str, float]:
+        if kind not in self._connectors:
+            self._connectors[kind] = connector_shares(self._pool(kind)[0])
+        return self._connectors[kind]
 
     def sample(self, rng: random.Random) -> nx.Graph:
         """One new room graph (see the module doc); raises SampleError after MAX_ATTEMPTS."""
@@ -116,7 +126,8 @@ class Sampler:
             graph.add_node(index, rtype="C", label=profile.label)
         if template.corridor_edges:
             openings = template.corridor_openings / template.corridor_edges
-        for a, b in _backbone(rng, [p.degree for p in profiles]):
+        connects = self._connects(template.kind)
+        for a, b in _backbone(rng, [p.degree for p in profiles], [connects[p.label] for p in profiles]):
             graph.add_edge(a, b, kind="i" if rng.random() < openings else "e")
         backbone = graph.copy()
         for index, profile in enumerate(profiles):
@@ -149,9 +160,14 @@ def _stochastic_round(rng: random.Random, value: float) -> int:
     return whole + (1 if rng.random() < value - whole else 0)
 
 
-def _backbone(rng: random.Random, wanted: list[int]) -> list[tuple[int, int]]:
+def _backbone(rng: random.Random, wanted: list[int], connects: list[float]) -> list[tuple[int, int]]:
     """A uniformly random tree on len(wanted) corridors whose degrees are `wanted`, nudged to
-    a valid tree degree sequence (each at least 1, summing to 2(n - 1))."""
+    a valid tree degree sequence (each at least 1, summing to 2(n - 1)).
+
+    Real plans' corridors often form several groups joined through rooms, so their degrees
+    sum to less than a tree needs. The missing degree goes to corridors in proportion to
+    `connects`, how often their label joins two corridors or more in real plans: halls and
+    corridors take it, washrooms (typed C in real plans, and leaves there) rarely do."""
     count = len(wanted)
     if count < 2:
         return []
@@ -161,11 +177,33 @@ def _backbone(rng: random.Random, wanted: list[int]) -> list[tuple[int, int]]:
         over = [i for i, d in enumerate(degrees) if d > 1]
         degrees[over[rng.randrange(len(over))]] -= 1
     while sum(degrees) < target:
-        degrees[rng.randrange(count)] += 1
+        degrees[_weighted_index(rng, connects)] += 1
     sequence = [i for i, d in enumerate(degrees) for _ in range(d - 1)]
     rng.shuffle(sequence)
     tree = nx.from_prufer_sequence(sequence) if count > 2 else nx.path_graph(2)
     return sorted((min(a, b), max(a, b)) for a, b in tree.edges)
+
+
+def _weighted_index(rng: random.Random, weights: list[float]) -> int:
+    """An index drawn with probability proportional to its weight (rng.random() only, so the
+    draw is the same on every Python version)."""
+    point = rng.random() * sum(weights)
+    for index, weight in enumerate(weights):
+        point -= weight
+        if point < 0:
+            return index
+    return len(weights) - 1
+
+
+def connector_shares(profiles: list[CorridorProfile]) -> dict[str, float]:
+    """Label -> share of its corridor-like spaces with two corridor-like neighbours or more,
+    plus CONNECTOR_FLOOR so that no label is ruled out."""
+    seen: dict[str, list[int]] = {}
+    for profile in profiles:
+        counts = seen.setdefault(profile.label, [0, 0])
+        counts[0] += 1
+        counts[1] += profile.degree >= 2
+    return {label: joined / total + CONNECTOR_FLOOR for label, (total, joined) in seen.items()}
 
 
 def _add_cluster(graph: nx.Graph, cluster: Cluster, corridors: list[int]) -> list[int]:

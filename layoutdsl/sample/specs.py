@@ -45,8 +45,12 @@ def sample_name(like: str, index: int) -> str:
 class SpecSampler:
     """Draws sampled specs; holds the grammar, the size model and the novelty cache."""
 
-    def __init__(self, grammar: Grammar, like: str = "school", sizes: SizeModel | None = None, seed: int = 0) -> None:
+    def __init__(self, grammar: Grammar, like: str = "school", sizes: SizeModel | None = None, seed: int = 0,
+                 *, drawn_sizes: bool = True) -> None:
         self.sampler = Sampler(grammar, like)
+        self.drawn_sizes = drawn_sizes
+        """Room sizes drawn from the size model's laws (default), else each label's typical
+        sizes: fewer outliers such as a corridor three times its typical length."""
         self.sizes = sizes if sizes is not None else load_model()
         self.like = like
         self.seed = seed
@@ -57,7 +61,8 @@ class SpecSampler:
     def header(self, index: int, graph: nx.Graph) -> str:
         """Comment lines saying where a spec came from (a spec's `#` starts a comment)."""
         return (
-            f"# sampled by `layoutdsl sample --like {self.like} --seed {self.seed}`, sample {index}\n"
+            f"# sampled by `layoutdsl sample --like {self.like} --seed {self.seed}"
+            f"{'' if self.drawn_sizes else ' --typical-sizes'}`, sample {index}\n"
             f"# template plan {graph.graph['template']}; sampler model {self.grammar.digest}; "
             f"{graph.number_of_nodes()} rooms, {graph.number_of_edges()} adjacencies\n"
         )
@@ -67,5 +72,6 @@ class SpecSampler:
         rng = random.Random(sample_seed(self.seed, index, self.like))
         graph = self.sampler.sample(rng)
         name = sample_name(self.like, index)
-        spec = spec_from_graph(graph, kind=graph.graph["kind"], model=self.sizes, rng=rng, name=name)
+        spec = spec_from_graph(graph, kind=graph.graph["kind"], model=self.sizes,
+                               rng=rng if self.drawn_sizes else None, name=name)
         return Sample(name, index, graph, spec, self.header(index, graph) + format_spec(spec))
