@@ -96,7 +96,10 @@ def run(args: argparse.Namespace) -> int:
     out.reading(args.spec)
     try:
         if args.spec == "-":
-            source = Source(args.stdin_filename or "<stdin>", sys.stdin.buffer.read().decode("utf-8"))
+            stream = getattr(sys.stdin, "buffer", sys.stdin)  # bytes, so bad UTF-8 is an I/O error
+            data = stream.read()
+            text = data.decode("utf-8") if isinstance(data, bytes) else data
+            source = Source(args.stdin_filename or "<stdin>", text)
         else:
             source = read_source(args.spec)
     except (OSError, UnicodeDecodeError) as error:
@@ -315,18 +318,22 @@ def variant_stem(name: str, index: int) -> str:
 
 
 def variant_failure(args, options, seed: int | None) -> str:
-    """Why a variant has no layout, in words: which stopping rule it met, and what to try."""
+    """Why a variant has no layout, in words: which stopping rule it met, and what to try.
+
+    compile_variants returns None for such a variant without a reason; what is known is the
+    rule every variant stops at (layoutdsl.compile.variants: the generator's rounds, then the
+    time limit), so that is what is said."""
     limit = f"{options.time_limit:g} s"
     if args.variants_from == "hints":
-        return (f"seed {seed}: neither the construction from the hints nor the solve found a "
+        return (f"seed {seed}: neither the generator starting from the hints nor the solve found a "
                 f"verified layout within the time limit ({limit}); try a larger --time-limit")
-    return (f"no seed tried gave a new arrangement: each seed's construction found no start, or "
-            f"its solve no verified layout, within the time limit ({limit}); try a larger "
-            "--time-limit, another --seed, or --variants-from hints")
+    return (f"no seed tried gave a new arrangement: for each, the generator found no layout, or "
+            f"none that verified, within the time limit ({limit}); try a larger --time-limit, "
+            "another --seed, or --variants-from hints")
 
 
 def _run_variants(spec, args, options, outdir: Path, formats, sources, out: Output) -> int:
-    """--variants N: the construction helper's compile_variants writes NAME-v1.* ... NAME-vN.*."""
+    """--variants N: compile_variants writes NAME-v1.* ... NAME-vN.*."""
     from layoutdsl.compile.variants import compile_variants
 
     try:

@@ -45,8 +45,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 def read_input(path: str, stdin_filename: str | None) -> Source:
     """The source for a FILE argument (`-` = standard input); raises OSError/ValueError."""
     if path == "-":
-        data = sys.stdin.buffer.read()
-        return Source(stdin_filename or "<stdin>", data.decode("utf-8"))
+        data = getattr(sys.stdin, "buffer", sys.stdin).read()  # a StringIO stdin has no buffer
+        return Source(stdin_filename or "<stdin>", data.decode("utf-8") if isinstance(data, bytes) else data)
     return read_source(path)
 
 

@@ -311,7 +311,7 @@ def test_a_failed_variant_says_why(tmp_path, capsys, monkeypatch):
                             "--node-limit", "5", "--time-limit", "7")
     assert code == exitcodes.NO_LAYOUT
     line = next(line for line in out.splitlines() if line.startswith("  tiny-v2"))
-    assert line.startswith("  tiny-v2: no layout: no seed tried gave a new arrangement")
+    assert line.startswith("  tiny-v2: no layout: no seed tried gave a new arrangement: for each, the generator")
     assert "within the time limit (7 s)" in line and "--time-limit" in line
 
 
