@@ -105,6 +105,9 @@ from hypothesis import given, settings  # noqa: E402
 from hypothesis import strategies as st  # noqa: E402
 
 from layoutdsl.syntax.ast import ClusterMember, Cluster, Connection, Hint, Obstacle, Position  # noqa: E402
+from layoutdsl.syntax.ast import NO_SIZE, SIZES_PENDING  # noqa: E402
+
+_SIZE_FIELDS = ("min_w", "max_w", "target_w", "min_h", "max_h", "target_h", "min_ar", "max_ar")
 
 _numbers = st.floats(allow_nan=False, allow_infinity=False, width=64)
 _weights = st.floats(0, 1e6)  # the language accepts only non-negative weights
@@ -120,6 +123,11 @@ def _specs(draw) -> Spec:
              safe_label(" ".join(draw(st.lists(_words, min_size=1, max_size=3)))),
              draw(st.booleans()), draw(_weights), draw(_weights))
         for rid in ids
+    )  # fmt: skip
+    # some rooms sizeless (`id rtype label`): their sizes are the size model's to give
+    rooms = tuple(
+        replace(room, **dict.fromkeys(_SIZE_FIELDS, NO_SIZE), sizes_from=SIZES_PENDING)
+        if draw(st.booleans()) else room for room in rooms
     )  # fmt: skip
     pick = st.sampled_from(ids)
     return Spec(
@@ -138,6 +146,7 @@ def _specs(draw) -> Spec:
               for i in range(draw(st.integers(0, 2)))),
         tuple(Hint(draw(pick), *draw(st.lists(_numbers, min_size=4, max_size=4))) for _ in range(draw(st.integers(0, 2)))),
         Settings(lambda_cover=draw(st.floats(0, 10)), seed=draw(st.integers(0, 2**31 - 1)),
+                 kind=draw(st.sampled_from(["school", "office"])),
                  node_limit=draw(st.none() | st.integers(1, 10**6)),
                  emphasis=draw(st.sampled_from(["default", "heuristics", "easycip"]))),
     )  # fmt: skip
