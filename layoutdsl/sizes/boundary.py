@@ -6,7 +6,7 @@ in the ratio ASPECT : 1 (wide). Each side is then lengthened, if needed, so that
 fits at its target size in some orientation (the longest target side fits the long side,
 the longest short target side fits the short side), and both are rounded up to 10 cm.
 FILL 0.6 and ASPECT 1.6 leave the generator room to arrange a graph it was never tuned on:
-real plans fill 44-99 % of their bounding box (median 0.77) at aspect ratios 1.2-3.8
+real plans fill 44-100 % of their bounding box (median 0.77) at aspect ratios 1.2-3.8
 (median 1.6), and at 0.6 the layouts of issue 40's measurement were found. `compile` may
 grow a chosen boundary when it finds no layout in it (the generator's page says how).
 """
