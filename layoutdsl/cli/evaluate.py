@@ -69,8 +69,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 def _read_plans(paths: list[str], out: Output):
     """The plans, their diagnostics, and whether a file could not be read at all (exit 2)."""
-    from layoutdsl.importer import read_building
+    from layoutdsl.diagnostics.filekind import wrong_kind_for_plan
     from layoutdsl.diagnostics.source import Source
+    from layoutdsl.importer import read_building
 
     buildings, diagnostics, sources = [], [], {}
     for path in paths:
@@ -80,7 +81,11 @@ def _read_plans(paths: list[str], out: Output):
         except OSError as error:
             out.cannot_read(path, error)
             return None, diagnostics, True
-        building, found = read_building(path)
+        wrong = wrong_kind_for_plan(path, text)
+        if wrong is not None:  # a spec or a layout.json: say so, not "malformed XML"
+            building, found = None, [wrong]
+        else:
+            building, found = read_building(path)
         diagnostics.extend(found)
         if found:
             sources[path] = Source(path, text)

@@ -113,3 +113,18 @@ def wrong_kind_for_import(filename: str, text: str) -> Diagnostic | None:
         return _diagnostic(filename, text, f"this is a {kind}, not a plan to import", "compile's output",
                            "import the building XML plan compile wrote beside it (`NAME.xml`)")
     return None
+
+
+def wrong_kind_for_plan(filename: str, text: str) -> Diagnostic | None:
+    """E019 when a file given to `evaluate` as a building plan is a spec, a compiled layout
+    or a room graph: evaluate compares building XML plans, the `NAME.xml` compile writes."""
+    kind = sniff(text)
+    stem = PurePath(filename).name.split(".")[0]
+    if kind == SPEC:
+        return _diagnostic(filename, text, "this is a layoutdsl spec, not a building plan", "a spec section",
+                           f"evaluate compares building XML plans: compile the spec and pass the "
+                           f"`{stem}.xml` it writes")
+    if kind in (LAYOUT_JSON, GRAPHML, GRAPH_JSON):
+        return _diagnostic(filename, text, f"this is a {kind}, not a building plan", "not a plan",
+                           f"evaluate compares building XML plans, such as the `{stem}.xml` compile writes")
+    return None

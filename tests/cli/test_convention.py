@@ -350,3 +350,11 @@ def test_import_of_a_spec_says_it_is_a_spec(tmp_path, capsys):
     assert code == 1 and not (tmp_path / "x.lay").exists()
     assert err.startswith("error[E019]: this is a layoutdsl spec, not a plan to import\n")
     assert "malformed XML" not in err and f"layoutdsl compile {spec} -o out" in err
+
+
+def test_evaluate_of_a_spec_says_it_is_not_a_plan(tmp_path, capsys):
+    spec = ROOT / "specs" / "office_small.lay"
+    code, _, err = run_main(capsys, "evaluate", str(PLAN), str(spec), "-o", str(tmp_path / "r"))
+    assert code == 1 and not (tmp_path / "r").exists()
+    assert err.startswith("error[E019]: this is a layoutdsl spec, not a building plan\n")
+    assert "malformed XML" not in err

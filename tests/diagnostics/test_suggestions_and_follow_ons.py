@@ -145,3 +145,15 @@ def test_a_spec_given_to_import_says_so():
     assert found.message == "this is a layoutdsl spec, not a plan to import"
     assert wrong_kind_for_import("plan.xml", "<building/>") is None
     assert wrong_kind_for_import("graph.csv", "0,1\n1,0\n") is None
+
+
+def test_a_spec_or_a_layout_given_to_evaluate_as_a_plan_says_so():
+    from layoutdsl.diagnostics.filekind import wrong_kind_for_plan
+
+    spec = wrong_kind_for_plan("specs/office.lay", "rooms\nR0 4 6 5 3 5 4 1 2 R OFFICE\n")
+    assert spec.code == "E019" and spec.message == "this is a layoutdsl spec, not a building plan"
+    assert "`office.xml`" in spec.help
+    layout = wrong_kind_for_plan("out/office-v1.layout.json", '{"rooms": [], "portals": []}')
+    assert layout.message == "this is a compiled layout (`.layout.json`), not a building plan"
+    assert "`office-v1.xml`" in layout.help
+    assert wrong_kind_for_plan("plan.xml", '<?xml version="1.0"?><building/>') is None
