@@ -44,7 +44,7 @@ BUSY_LOOP = "while True: pass"
 def import_plan(path: Path, folder: Path) -> Path:
     spec = folder / (path.stem + ".lay")
     done = subprocess.run([sys.executable, "-m", "layoutdsl", "import", str(path), "-o", str(spec), "-q"],
-                          capture_output=True, text=True)
+                          capture_output=True, text=True, cwd=folder)
     if done.returncode not in (0,) or not spec.exists():
         raise RuntimeError(f"import {path.name} failed: {done.stderr.strip()[:300]}")
     return spec
@@ -55,7 +55,8 @@ def compile_once(spec: Path, outdir: Path, seed: int, time_limit: float) -> dict
     done = subprocess.run(
         [sys.executable, "-m", "layoutdsl", "compile", str(spec), "-o", str(outdir), "--variants", "1",
          "--seed", str(seed), "-q", "--emit", "xml", "--time-limit", str(time_limit)],
-        capture_output=True, text=True, timeout=time_limit * 3 + 120)
+        capture_output=True, text=True, timeout=time_limit * 3 + 120,
+        cwd=outdir.parent)  # not the repository: `-m` would put its checkout before PYTHONPATH
     return {"rc": done.returncode, "seconds": round(time.monotonic() - began, 1),
             "stderr": done.stderr.strip()[-300:]}
 
@@ -151,12 +152,14 @@ def main(argv: list[str] | None = None) -> int:
                 for name, spec in specs.items():
                     for seed in seeds:
                         outdir = work / phase / f"{name}-s{seed}"
+                        outdir.parent.mkdir(parents=True, exist_ok=True)
                         runs[phase][(name, seed)] = compile_once(spec, outdir, seed, args.time_limit)
                         print(f"  {phase} {name} seed {seed}: rc {runs[phase][(name, seed)]['rc']}, "
                               f"{runs[phase][(name, seed)]['seconds']} s", file=sys.stderr, flush=True)
             finally:
                 if load is not None:
                     load.stop()
+        emit(f"# code: {subprocess.run([sys.executable, '-c', 'import layoutdsl; print(layoutdsl.__file__)'], capture_output=True, text=True, cwd=work).stdout.strip()}")
         emit(f"{'plan':44} {'seed':>4} {'idle rc':>7} {'idle s':>7} {'load rc':>7} {'load s':>7} {'same':>5}  differs")
         same = 0
         for name in specs:
