@@ -19,8 +19,8 @@ WRONG_KIND = register(
     Severity.ERROR,
     "wrong kind of file",
     "Reports a file that is not what the command reads: a building XML plan, a room graph or "
-    "a compiled `.layout.json` given to `lint`, `fmt` or `compile`, or a layoutdsl spec given "
-    "to `import`. The help names the command that reads it.",
+    "a compiled `.layout.json` given to `lint`, `fmt` or `compile`; a layoutdsl spec given "
+    "to `import`; a spec, layout or graph given to `evaluate`. The help names what to run.",
     "Reading an XML plan as a spec would report a dozen syntax errors (the first one "
     "`E002 entry before any section`) that hide the real mistake: the wrong command.",
     "layoutdsl compile plan.xml -o out   # error: this is a building XML plan: run `layoutdsl import`",
