@@ -358,3 +358,20 @@ def test_evaluate_of_a_spec_says_it_is_not_a_plan(tmp_path, capsys):
     assert code == 1 and not (tmp_path / "r").exists()
     assert err.startswith("error[E019]: this is a layoutdsl spec, not a building plan\n")
     assert "malformed XML" not in err
+
+
+@pytest.mark.parametrize("name", sorted(COMMANDS))
+def test_help_examples_parse(name):
+    """Every `$ layoutdsl ...` line of a command's help is accepted by its parser, so the
+    examples cannot drift from the flags."""
+    import shlex
+
+    examples = [line.split("$ ", 1)[1] for line in subparser(name).epilog.splitlines() if line.startswith("  $ ")]
+    assert examples, name
+    for example in examples:
+        words = shlex.split(example)
+        for stop in ("<", ">", "|"):
+            if stop in words:
+                words = words[:words.index(stop)]
+        assert words[:2] == ["layoutdsl", name], example
+        build_parser(name).parse_args(words[1:])  # SystemExit (a test error) if a flag is wrong
