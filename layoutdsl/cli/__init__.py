@@ -84,6 +84,12 @@ def main(argv: list[str] | None = None) -> int:
             "  set LAYOUTDSL_TRACEBACK=1 to see where it happened, and please report it",
             file=sys.stderr,
         )
+        if getattr(args, "format", None) == "json":  # a script still gets its one result object
+            from layoutdsl.cli.output import Output
+
+            out = Output(args.command, args)
+            out.errors.append({"kind": "internal", "message": f"{type(error).__name__}: {error}"})
+            out.finish(exitcodes.USAGE)
         return exitcodes.USAGE
 
 

@@ -375,3 +375,18 @@ def test_help_examples_parse(name):
                 words = words[:words.index(stop)]
         assert words[:2] == ["layoutdsl", name], example
         build_parser(name).parse_args(words[1:])  # SystemExit (a test error) if a flag is wrong
+
+
+def test_an_internal_error_still_gives_a_json_result(monkeypatch, capsys):
+    from layoutdsl.cli import lint
+
+    def broken(_args):
+        raise RuntimeError("boom")
+
+    monkeypatch.delenv("LAYOUTDSL_TRACEBACK", raising=False)
+    monkeypatch.setattr(lint, "run", broken)
+    code, out, err = run_main(capsys, "lint", "specs/office_small.lay", "--format", "json")
+    result = json.loads(out)
+    assert code == 2 and result["status"] == "usage_or_io_error"
+    assert result["errors"] == [{"kind": "internal", "message": "RuntimeError: boom"}]
+    assert "internal error: RuntimeError: boom" in err
