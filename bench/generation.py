@@ -441,6 +441,7 @@ def _variants_of_plan(path: str, n: int, seed: int, time_limit: float, workers: 
     found = [layout_centres(layout) for layout in result.layouts if layout is not None]
     pairs = sorted(pairwise_differences(found).values())
     return {"rooms": len(spec.rooms), "seconds": round(time.monotonic() - began, 2),
+            "original_void_share": original_void_share(Path(path)),
             "variants": rows, "pairwise_min": round(pairs[0], 4) if pairs else None,
             "pairwise_median": round(statistics.median(pairs), 4) if pairs else None,
             "pairwise": [round(v, 4) for v in pairs]}
@@ -457,7 +458,9 @@ def format_variants(plan: str, result: dict) -> str:
         lines.append(f"  variant {row['variant']}: difference {row['difference']:.3f}, area "
                      f"{row['area_ratio']:.3f}{'' if area_ok else ' (outside +-15 %)'}, fill "
                      f"{row['fill']:.3f} vs original {row['original_fill']:.3f}"
-                     f"{'' if fill_ok else ' (below 0.8 x)'}")
+                     f"{'' if fill_ok else ' (below 0.8 x)'}; entrances open {row['entrances']}, voids "
+                     f"{row['void_share']:.3f} (original {result.get('original_void_share')}), outside walls "
+                     f"{row['outside_wall']}, slivers {row['slivers']}")
     if result.get("error"):
         lines.append(f"  {result['error']}")
     return "\n".join(lines)
@@ -515,11 +518,16 @@ def main(argv: list[str] | None = None) -> int:
         if not args.json:
             emit(f"{first_layouts(rows)}\n{realism_summary(rows)}")
     elif args.variants:
+        variant_rows = []
         for path in plan_files(args.folder, args.only):
             result = isolated(_variants_of_plan, str(path), args.variants, args.seed,
                               args.time_limit, args.workers, limit=args.time_limit * args.variants)
             emit(json.dumps({"plan": path.stem, **result}) if args.json
                  else format_variants(path.stem, result))
+            variant_rows += [{**row, "original_void_share": result.get("original_void_share")}
+                             for row in result.get("variants", [])]
+        if not args.json:
+            emit(realism_summary(variant_rows))
     elif args.throughput:
         matches = plan_files(args.folder, args.throughput)
         if not matches:
