@@ -74,6 +74,11 @@ def sniff(text: str) -> str | None:
     return None
 
 
+def _a(kind: str) -> str:
+    """`a building XML plan`, `an XML file`."""
+    return ("an " if kind.startswith(("XML", "a", "e", "i", "o", "u")) else "a ") + kind
+
+
 def _diagnostic(filename: str, text: str, message: str, label: str, help: str) -> Diagnostic:
     number, line = _first_line(text)
     return Diagnostic(WRONG_KIND, message, filename, Span(number, 1, number, max(2, len(line) + 1)),
@@ -97,7 +102,7 @@ def wrong_kind_for_spec(filename: str, text: str) -> Diagnostic | None:
         help = "this is what `compile` writes; compile the `.lay` spec it was made from"
     else:
         help = "layoutdsl specs are text files of sections (`rooms`, `boundary`, ...); see `layoutdsl explain E019`"
-    return _diagnostic(filename, text, f"this is a {kind}, not a layoutdsl spec", "not a spec", help)
+    return _diagnostic(filename, text, f"this is {_a(kind)}, not a layoutdsl spec", "not a spec", help)
 
 
 def wrong_kind_for_import(filename: str, text: str) -> Diagnostic | None:
@@ -110,7 +115,7 @@ def wrong_kind_for_import(filename: str, text: str) -> Diagnostic | None:
             f"directly: `layoutdsl compile {filename} -o out`",
         )
     if kind == LAYOUT_JSON:
-        return _diagnostic(filename, text, f"this is a {kind}, not a plan to import", "compile's output",
+        return _diagnostic(filename, text, f"this is {_a(kind)}, not a plan to import", "compile's output",
                            "import the building XML plan compile wrote beside it (`NAME.xml`)")
     return None
 
@@ -125,6 +130,6 @@ def wrong_kind_for_plan(filename: str, text: str) -> Diagnostic | None:
                            f"evaluate compares building XML plans: compile the spec and pass the "
                            f"`{stem}.xml` it writes")
     if kind in (LAYOUT_JSON, GRAPHML, GRAPH_JSON):
-        return _diagnostic(filename, text, f"this is a {kind}, not a building plan", "not a plan",
+        return _diagnostic(filename, text, f"this is {_a(kind)}, not a building plan", "not a plan",
                            f"evaluate compares building XML plans, such as the `{stem}.xml` compile writes")
     return None

@@ -157,3 +157,7 @@ def test_a_spec_or_a_layout_given_to_evaluate_as_a_plan_says_so():
     assert layout.message == "this is a compiled layout (`.layout.json`), not a building plan"
     assert "`office-v1.xml`" in layout.help
     assert wrong_kind_for_plan("plan.xml", '<?xml version="1.0"?><building/>') is None
+
+
+def test_other_xml_is_an_xml_file():
+    assert wrong_kind_for_spec("a.lay", "<rooms>\n").message == "this is an XML file, not a layoutdsl spec"
