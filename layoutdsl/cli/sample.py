@@ -63,6 +63,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     parser.add_argument("--sizes", metavar="FILE",
                         help="a size model file (default: the shipped one, or one fitted on --train)")
     parser.add_argument("--save-model", metavar="FILE", help="write the grammar fitted with --train to FILE")
+    parser.add_argument("--typical-sizes", action="store_true",
+                        help="give each room its label's typical sizes instead of sizes drawn from the model's "
+                        "laws (less varied buildings, no outliers such as a corridor three times its usual length)")
     add_output_arguments(parser, diagnostics=True)
     parser.set_defaults(run=run)
     return parser
@@ -157,7 +160,7 @@ def _write_samples(args, out: Output, grammar, sizes, count: int) -> int:
     if outdir.exists() and not outdir.is_dir():
         return out.finish(out.error(f"`{outdir}` exists and is not a folder", kind="io", path=str(outdir)))
     try:
-        sampler = SpecSampler(grammar, args.like, sizes, seed=args.seed)
+        sampler = SpecSampler(grammar, args.like, sizes, seed=args.seed, drawn_sizes=not args.typical_sizes)
     except (SampleError, SizesError) as error:
         return out.finish(out.error(str(error)))
     records = []

@@ -85,3 +85,15 @@ def test_a_broken_training_plan_is_reported_with_its_diagnostics(tmp_path, capsy
     err = capsys.readouterr().err
     assert "E400" in err and "school_broken.xml" in err
     assert not (tmp_path / "o").exists()
+
+
+def test_typical_sizes_keep_the_graph_and_change_the_sizes(tmp_path):
+    drawn, typical = tmp_path / "drawn", tmp_path / "typical"
+    assert main(["sample", "--like", "school", "-n", "1", "-o", str(drawn), "-q"]) == 0
+    assert main(["sample", "--like", "school", "-n", "1", "-o", str(typical), "-q", "--typical-sizes"]) == 0
+    a, _ = load_spec(str(drawn / "school-0001.lay"))
+    b, _ = load_spec(str(typical / "school-0001.lay"))
+    assert [(r.id, r.rtype, r.label) for r in a.rooms] == [(r.id, r.rtype, r.label) for r in b.rooms]
+    assert a.adjacencies == b.adjacencies
+    assert [r.target_w for r in a.rooms] != [r.target_w for r in b.rooms]
+    assert "--typical-sizes`, sample 1" in (typical / "school-0001.lay").read_text().splitlines()[0]
