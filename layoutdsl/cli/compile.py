@@ -242,7 +242,13 @@ _STATUS_TEXT = {
 
 
 def _status_text(spec, info) -> str:
-    return _STATUS_TEXT.get(info.status, info.status)
+    text = _STATUS_TEXT.get(info.status, info.status)
+    if getattr(info, "wall_clock_limited", False) and info.status != "time_limit":
+        # the time limit stopped a stage before its deterministic work limits
+        text += " (a stage stopped at the time limit: another machine may give another layout)"
+    elif info.status == "time_limit":
+        text += " (so another machine may give another layout)"
+    return text
 
 
 def summary(spec, layout, written: list[Path]) -> str:

@@ -364,6 +364,8 @@ def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dic
             seed=options.seed,
             method=method,
             grown_boundary=None if generated is None else generated.grown,
+            # the search's own report; polish and neighbourhood outcomes carry the same flag
+            wall_clock_limited=outcome.wall_clock_limited,
         )
         layout = layout_from_rects(spec, rects, info)
         violations = verify(spec, layout)
