@@ -45,7 +45,6 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
             ("refit the shipped model (what layoutdsl ships was made so)",
              "layoutdsl sample --train ../shared/floorplans --save-model layoutdsl/sample/data/grammar.json"),
         ],
-        exit_codes=(exitcodes.OK, exitcodes.SPEC_ERRORS, exitcodes.USAGE),
     )  # fmt: skip
     parser.add_argument("--like", default="school", metavar="KIND",
                         help="building kind to sample: school, office (the kinds the model has) or any "
