@@ -64,7 +64,7 @@ def main(argv: list[str] | None = None) -> int:
     # The first plain word names the command; top-level options take no values.
     command = next((word for word in argv if not word.startswith("-")), None)
     parser = build_parser(command if command in COMMANDS else None)
-    args = parser.parse_args(argv)
+    args = _parse(parser, argv, command)
     if not getattr(args, "run", None):
         parser.print_help(sys.stderr)
         return exitcodes.USAGE
@@ -91,6 +91,36 @@ def main(argv: list[str] | None = None) -> int:
             out.errors.append({"kind": "internal", "message": f"{type(error).__name__}: {error}"})
             out.finish(exitcodes.USAGE)
         return exitcodes.USAGE
+
+
+def _wants_json(argv: list[str]) -> bool:
+    return any(word == "--format=json" or (word == "--format" and following == "json")
+               for word, following in zip(argv, [*argv[1:], ""]))
+
+
+def _parse(parser: argparse.ArgumentParser, argv: list[str], command: str | None) -> argparse.Namespace:
+    """parser.parse_args; a usage error under --format json also prints the one JSON result
+    object (status usage_or_io_error, argparse's message), so a script never parses text."""
+    if not _wants_json(argv):
+        return parser.parse_args(argv)
+    import contextlib
+    import io
+
+    messages = io.StringIO()
+    try:
+        with contextlib.redirect_stderr(messages):
+            return parser.parse_args(argv)
+    except SystemExit as stop:
+        if stop.code == exitcodes.USAGE:
+            import json
+
+            last = messages.getvalue().strip().splitlines()[-1:] or ["usage error"]
+            print(json.dumps({"command": command, "status": exitcodes.STATUS[exitcodes.USAGE],
+                              "exit_code": exitcodes.USAGE, "read": [], "written": [], "diagnostics": [],
+                              "errors": [{"kind": "usage", "message": last[0]}], "timings": {}}, indent=2))
+        raise
+    finally:
+        sys.stderr.write(messages.getvalue())  # usage and warnings still reach the terminal
 
 
 if __name__ == "__main__":

@@ -390,3 +390,13 @@ def test_an_internal_error_still_gives_a_json_result(monkeypatch, capsys):
     assert code == 2 and result["status"] == "usage_or_io_error"
     assert result["errors"] == [{"kind": "internal", "message": "RuntimeError: boom"}]
     assert "internal error: RuntimeError: boom" in err
+
+
+def test_a_usage_error_still_gives_a_json_result(capsys):
+    with pytest.raises(SystemExit) as stop:
+        main(["compile", "specs/office_small.lay", "--format", "json", "--seed", "minus-one"])
+    captured = capsys.readouterr()
+    result = json.loads(captured.out)
+    assert stop.value.code == 2 and result["status"] == "usage_or_io_error" and result["exit_code"] == 2
+    assert "--seed" in result["errors"][0]["message"] and result["errors"][0]["kind"] == "usage"
+    assert "usage: layoutdsl compile" in captured.err  # the usage still reaches the terminal
