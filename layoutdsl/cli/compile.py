@@ -391,6 +391,9 @@ def _run_variants(spec, args, options, outdir: Path, formats, sources, out: Outp
             f"{i}-{j} {value:.2f}" for (i, j), value in sorted(pairwise.items())))
     if paths:
         lines.append("  wrote       " + ", ".join(str(p) for p in paths))
+    if count == 0:  # maybe no variant can exist: a single compile says why (E90x)
+        lines.append(f"  none found: `layoutdsl compile {args.spec} -o {args.output}` without --variants "
+                     "says whether the spec itself has no layout, and which lines conflict")
     out.summary("\n".join(lines))
     out.diagnostics(list(result.diagnostics), sources)
     code = exitcodes.OK if count == args.variants else exitcodes.NO_LAYOUT

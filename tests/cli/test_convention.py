@@ -400,3 +400,17 @@ def test_a_usage_error_still_gives_a_json_result(capsys):
     assert stop.value.code == 2 and result["status"] == "usage_or_io_error" and result["exit_code"] == 2
     assert "--seed" in result["errors"][0]["message"] and result["errors"][0]["kind"] == "usage"
     assert "usage: layoutdsl compile" in captured.err  # the usage still reaches the terminal
+
+
+def test_when_no_variant_is_found_compile_points_at_the_single_compile(tmp_path, capsys, monkeypatch):
+    from layoutdsl.compile import variants
+
+    def none_found(spec, n, **kwargs):
+        return variants.VariantsResult([None] * n, [None] * n, None, [], [None] * n, [False] * n, ())
+
+    monkeypatch.setattr(variants, "compile_variants", none_found)
+    code, out, _ = run_main(capsys, "compile", str(TINY), "-o", str(tmp_path), "--variants", "2", "--time-limit", "5")
+    assert code == exitcodes.NO_LAYOUT
+    assert out.count(": no layout: no seed tried gave a new arrangement") == 2
+    assert f"none found: `layoutdsl compile {TINY} -o {tmp_path}` without --variants says whether" in out
+    assert not list(tmp_path.iterdir())  # nothing written
