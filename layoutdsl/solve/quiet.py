@@ -85,9 +85,7 @@ def _enter() -> None:
             # only a stream writing to the redirected descriptor is swapped (pytest's capsys
             # and other in-memory streams keep working as they are)
             if fd in copies and _fd_of(stream) == fd:
-                replacement = open(copies[fd], "w", buffering=1, closefd=False,  # noqa: SIM115
-                                   encoding=getattr(stream, "encoding", None) or "utf-8",
-                                   errors=getattr(stream, "errors", None) or "strict")
+                replacement = _Passthrough(stream, copies[fd])
                 _python_streams.append((name, stream, replacement))
                 setattr(sys, name, replacement)
 
@@ -99,18 +97,63 @@ def _leave() -> None:
         if _depth > 0:
             return
         for name, original, replacement in reversed(_python_streams):
-            with contextlib.suppress(Exception):
-                replacement.flush()
+            replacement.detach_copy()  # from now on it writes to the original stream
             if getattr(sys, name) is replacement:
                 setattr(sys, name, original)
-            with contextlib.suppress(Exception):
-                replacement.close()
         _python_streams.clear()
         _flush_c_stdio()
         for fd, copy in reversed(_saved):
             os.dup2(copy, fd)
             os.close(copy)
         _saved.clear()
+
+
+class _Passthrough(io.TextIOBase):
+    """sys.stdout/sys.stderr while silenced: writes go to the duplicate of the real
+    descriptor; once the silence ends, to the original stream. A reference kept past the
+    silence (a logging handler created meanwhile, a thread's `file=` argument) keeps
+    working, and is never left holding a closed or reused descriptor."""
+
+    def __init__(self, original, copy_fd: int):
+        super().__init__()
+        self._original = original
+        self._copy: int | None = copy_fd
+        self._encoding = getattr(original, "encoding", None) or "utf-8"
+        self._errors = getattr(original, "errors", None) or "replace"
+
+    @property
+    def encoding(self) -> str:  # type: ignore[override]
+        return self._encoding
+
+    def writable(self) -> bool:
+        return True
+
+    def write(self, text: str) -> int:
+        copy = self._copy
+        if copy is None:
+            return self._original.write(text)
+        data = text.encode(self._encoding, self._errors)
+        while data:
+            try:
+                written = os.write(copy, data)
+            except OSError:
+                return self._original.write(text)  # the copy went away: the stream as it is
+            data = data[written:]
+        return len(text)
+
+    def flush(self) -> None:
+        if self._copy is None:
+            with contextlib.suppress(Exception):
+                self._original.flush()
+
+    def isatty(self) -> bool:
+        return bool(getattr(self._original, "isatty", lambda: False)())
+
+    def fileno(self) -> int:
+        return self._original.fileno()
+
+    def detach_copy(self) -> None:
+        self._copy = None
 
 
 @contextlib.contextmanager

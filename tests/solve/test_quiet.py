@@ -89,3 +89,11 @@ def test_a_compile_prints_only_its_own_lines(tmp_path):
         assert "GMP" not in line and "feasibility tolerance" not in line, line
         assert not line.startswith("[") and "ERROR" not in line, line  # SCIP: "[file.c:12] ERROR: ..."
         assert line.startswith(("compil", "  ")), line  # ours: "compiling"/"compiled" and indented lines
+
+
+def test_a_stream_kept_from_inside_the_silence_still_writes_afterwards(capfd):
+    with native_output_silenced():
+        kept = sys.stderr  # a logging handler made now would hold this object
+    os.write(2, b"")  # the descriptor is back
+    print("after the silence", file=kept)
+    assert "after the silence" in capfd.readouterr().err
