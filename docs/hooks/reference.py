@@ -44,7 +44,19 @@ def cli_page() -> str:
     ]
     for name, sub in subparsers.choices.items():
         parts += ["", f"## `layoutdsl {name}`", "", "```text", sub.format_help().rstrip(), "```"]
+        parts += nested_help(sub, f"layoutdsl {name}")
     return "\n".join(parts) + "\n"
+
+
+def nested_help(parser: argparse.ArgumentParser, prefix: str) -> list[str]:
+    """Sections for a command's own subcommands (`layoutdsl X Y`), should one grow them."""
+    parts: list[str] = []
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            for name, sub in action.choices.items():
+                parts += ["", f"### `{prefix} {name}`", "", "```text", sub.format_help().rstrip(), "```"]
+                parts += nested_help(sub, f"{prefix} {name}")
+    return parts
 
 
 INPUT_SUFFIXES = (".lay", ".xml", ".csv", ".json", ".graphml")
