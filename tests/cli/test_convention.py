@@ -212,11 +212,16 @@ def test_the_specs_folder_lints_clean(capsys):
 
 
 def help_text(name: str) -> str:
-    env = dict(os.environ, COLUMNS="300")  # a wide terminal must not give 300-character lines
-    done = subprocess.run([sys.executable, "-m", "layoutdsl", name, "--help"], capture_output=True, text=True,
-                          cwd=ROOT, env=env, timeout=60)
-    assert done.returncode == 0, done.stderr
-    return done.stdout
+    """`layoutdsl NAME --help` as a 300-column terminal gets it (argparse reads COLUMNS)."""
+    saved = os.environ.get("COLUMNS")
+    os.environ["COLUMNS"] = "300"  # a wide terminal must not give 300-character lines
+    try:
+        return subparser(name).format_help()
+    finally:
+        if saved is None:
+            del os.environ["COLUMNS"]
+        else:
+            os.environ["COLUMNS"] = saved
 
 
 @pytest.mark.parametrize("name", sorted(COMMANDS))
