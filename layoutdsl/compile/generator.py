@@ -119,7 +119,13 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
     sides = initial.drawn_sides(drawn, outline, shrink=1.0 if soft else None)
     rooms = Rooms.of(drawn, sides, outline, outline_given=not soft)
 
+    best: list = []
+
     def starts(round_index: int, chain: int):
+        # the first chain of a later round goes on from the best state so far (longer, so
+        # it can leave its local minimum); the others start from new embeddings
+        if chain == 0 and best:
+            return best[0].state
         return initial.initial_state(drawn, rooms, _embedding_seed(seed, round_index, chain))
 
     done_rounds = moves = 0
@@ -128,6 +134,8 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
             return Generated(None, spec, "", done_rounds, moves, cut_off=True)
         done_rounds += 1
         moves += found.moves
+        if not best or (found.violation, found.cost) < (best[0].violation, best[0].cost):
+            best[:] = [found]
         if found.violation > WORK["repair_max_violation_m"]:
             continue
         geometry = rooms.geometry(found.state)

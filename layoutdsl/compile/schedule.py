@@ -10,8 +10,9 @@ the room graph (initial.py), through random moves (moves.py), scored by one cost
 - a *round* runs CHAINS chains side by side (numba releases the GIL), each seeded from the
   spec's seed, the round and the chain index; the round's result is its best FINISHED chain
   by (violation, cost, chain index), so which thread ends first never matters;
-- rounds follow one another (`rounds`), each from a new initial state and with
-  ROUND_GROWTH times the moves of the one before, until the caller has what it needs.
+- rounds follow one another (`rounds`), each with ROUND_GROWTH times the moves of the one
+  before, until the caller has what it needs; the caller's `starts` gives each chain its
+  initial state (the generator: the best state so far for chain 0, a new embedding else).
 
 The number of moves decides every result; the wall clock only cuts a compile off at its
 time limit (`cancel`), and then there is no result, never another one.
