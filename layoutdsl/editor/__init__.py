@@ -9,7 +9,7 @@
   language and the grammar and starts `layoutdsl lsp` (copy it to `~/.vscode/extensions/`
   and run `npm install` there; docs/editor.md).
 
-tests/lsp/test_grammar.py tokenizes the bundled specs with vscode-textmate, the engine VS Code
+tests/lsp/test_textmate_grammar.py tokenizes the bundled specs with vscode-textmate, the engine VS Code
 uses, and compares them with committed snapshots.
 """
 
