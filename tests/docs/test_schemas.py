@@ -56,7 +56,7 @@ def batch_output(tmp_path_factory) -> Path:
     result = subprocess.run(
         [sys.executable, "-m", "layoutdsl", "batch", str(ROOT / "specs" / "l_corridor.lay"),
          str(ROOT / "specs" / "campus_constraints.lay"), str(folder / "tight.lay"),
-         "-o", str(outdir), "--variants", "1", "--time-limit", "20", "-q"],
+         "-o", str(outdir), "--variants", "1", "-q"],
         capture_output=True, text=True, timeout=300,
     )  # fmt: skip
     assert result.returncode == 3, result.stderr  # one building failed, on purpose
