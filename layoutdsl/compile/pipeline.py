@@ -257,6 +257,9 @@ def _polish_start(model, spec: Spec, options: SolveOptions, rects_start: dict[st
     t0 = time.monotonic()
     share = max(0.2, min(TIME['polish'] * options.time_limit, deadline - time.monotonic()))
     first_polish = polish(model, replace(options, time_limit=share, quiet=True))
+    # a stage the clock stopped before its work limits makes the layout load-dependent:
+    # remembered on the model for _search_whole_model's outcome (SolveInfo.wall_clock_limited)
+    model.clock_limited = first_polish.wall_clock_limited
     if first_polish.has_solution:
         polished = rects_from_model(model)
     else:
@@ -267,7 +270,9 @@ def _polish_start(model, spec: Spec, options: SolveOptions, rects_start: dict[st
         t0 = time.monotonic()
         lns_share = TIME['lns'][len(spec.rooms) <= LNS_SMALL]
         lns_deadline = time.monotonic() + lns_share * max(0.0, deadline - time.monotonic())
-        improve_by_neighbourhoods(model, options, deadline=lns_deadline, size=LNS_SIZE, progress=progress)
+        searched = improve_by_neighbourhoods(model, options, deadline=lns_deadline, size=LNS_SIZE,
+                                             progress=progress)
+        model.clock_limited = model.clock_limited or searched.wall_clock_limited
         polished = rects_from_model(model)
         timings["neighbourhoods"] = time.monotonic() - t0
     return polished
@@ -292,6 +297,7 @@ def _search_whole_model(model, spec: Spec, options: SolveOptions, rects_start: d
                                  warm_start=rects_start is not None)
     else:
         outcome = SolveOutcome(status="construction", has_solution=False)
+    outcome.wall_clock_limited = outcome.wall_clock_limited or getattr(model, "clock_limited", False)
     timings["solve"] = time.monotonic() - t0
     improved = outcome.has_solution and (
         start_objective is None or outcome.objective is None or outcome.objective < start_objective - 1e-6)
@@ -300,7 +306,9 @@ def _search_whole_model(model, spec: Spec, options: SolveOptions, rects_start: d
         t0 = time.monotonic()
         incumbent = rects_from_model(model)
         last = max(0.2, deadline - time.monotonic())
-        if not polish(model, replace(options, time_limit=last, quiet=True)).has_solution:
+        last_polish = polish(model, replace(options, time_limit=last, quiet=True))
+        outcome.wall_clock_limited = outcome.wall_clock_limited or last_polish.wall_clock_limited
+        if not last_polish.has_solution:
             warm_start_from_rects(model, spec, incumbent)
         timings["polish"] = timings.get("polish", 0.0) + time.monotonic() - t0
     return outcome
