@@ -22,6 +22,7 @@ WORK = {
     "give_up_m": 5.0,            #   share of its moves stops there
     # the sizing stage (layoutdsl.solve.relations): a round's MIP stops after this many nodes
     "repair_round_nodes": 200,
+    "hint_round_nodes": 5000,    # ... a round's MIP on the original plan's boxes (worth a long repair)
     "repair_max_violation_m": 6.0,  # a round's best state is sized when at most this far from a layout
     "repair_rounds": 4,          # repair rounds of an annealed state before the next round anneals
     "repair_stalls": 1,          # ... or stalled rounds

@@ -83,7 +83,8 @@ def generate(spec: Spec, *, seed: int = 0, deadline: float | None = None, use_hi
     rng = random.Random(seed)
     drawn = lshape.seeds_spec(spec)
     if use_hints and hint_geometry(drawn) is not None:
-        found = _from_hints(spec, drawn, rng, seed, limits, perturb_hints)
+        found = _from_hints(spec, drawn, rng, seed, replace(limits, round_nodes=WORK["hint_round_nodes"]),
+                            perturb_hints)
         if found is not None:
             return Generated(found, spec, "hints")
     return _annealed(spec, drawn, rng, seed, limits, grow_boundary,

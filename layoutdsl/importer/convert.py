@@ -215,9 +215,9 @@ def convert(
             _widen_for_door(sides, door_side, door, room_id, label, space, filename, diagnostics)
         room = _rounded_room(room_id, rtype, label, sides, var_plus, var_minus, options,
                              door_side if widened else None)
-        if opens_outside(rtype, label):
-            # an entrance opens to the outside in every original plan (31 of 31 over the 24
-            # plans): the generator must keep it on the boundary (onB, the thesis' 5.12)
+        if opens_outside(rtype, label) and _on_plan_edge(space, building):
+            # an entrance that opens to the outside in the original must in every layout
+            # too: onB (the thesis' 5.12) makes the generator keep it on the boundary
             room = replace(room, on_boundary=True)
         rooms.append(room)
         if options.hints:
@@ -232,6 +232,21 @@ def convert(
         arms=tuple(arms),
     )
     return spec, diagnostics
+
+
+PLAN_EDGE_M = 0.5
+"""Metres within which a space's box counts as touching the plan's bounding box."""
+
+
+def _on_plan_edge(space: Space, building: Building) -> bool:
+    """Whether the space's bounding box reaches the plan's (within PLAN_EDGE_M): it opens to
+    the outside there (an entrance in a courtyard does not count)."""
+    reach = PLAN_EDGE_M / building.metres_per_unit
+    box = space.bbox
+    return (box.min_x - min(s.bbox.min_x for s in building.spaces) <= reach
+            or max(s.bbox.max_x for s in building.spaces) - box.max_x <= reach
+            or box.min_y - min(s.bbox.min_y for s in building.spaces) <= reach
+            or max(s.bbox.max_y for s in building.spaces) - box.max_y <= reach)
 
 
 def opens_outside(rtype: str, label: str) -> bool:

@@ -491,8 +491,10 @@ def _add_rooms(model, problem: _Problem, orientations: dict[str, bool], turnable
             targets = targets[:2]
         else:
             w, h, targets = _fixed_orientation_sizes(model, room, sizes, long_x)
-        model.addCons(x + w <= width - SAFETY)
-        model.addCons(y + h <= height - SAFETY)
+        # inside up to the boundary itself: an onB room's far side must reach it, and the
+        # verifier's tolerance (1e-6 m) covers SCIP's on the outside
+        model.addCons(x + w <= width)
+        model.addCons(y + h <= height)
         rooms.boxes[room.id] = _Box(x, y, w, h)
         if with_deviation:
             for var, target in zip((w, h), targets):
@@ -535,9 +537,9 @@ def _add_on_boundary(model, problem: _Problem, boxes: dict[str, _Box]) -> None:
         box = boxes[room.id]
         sides = [model.addVar(f"onb_{room.id}_{side}", vtype="B") for side in "lrdu"]
         model.addCons(box.x <= big_m * (1 - sides[0]))
-        model.addCons(box.x + box.w >= width - SAFETY - big_m * (1 - sides[1]))
+        model.addCons(box.x + box.w >= width - big_m * (1 - sides[1]))
         model.addCons(box.y <= big_m * (1 - sides[2]))
-        model.addCons(box.y + box.h >= height - SAFETY - big_m * (1 - sides[3]))
+        model.addCons(box.y + box.h >= height - big_m * (1 - sides[3]))
         model.addCons(quicksum(sides) >= 1)
 
 
