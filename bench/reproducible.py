@@ -161,17 +161,20 @@ def main(argv: list[str] | None = None) -> int:
                     load.stop()
         emit(f"# code: {subprocess.run([sys.executable, '-c', 'import layoutdsl; print(layoutdsl.__file__)'], capture_output=True, text=True, cwd=work).stdout.strip()}")
         emit(f"{'plan':44} {'seed':>4} {'idle rc':>7} {'idle s':>7} {'load rc':>7} {'load s':>7} {'same':>5}  differs")
-        same = 0
+        same = neither = 0
         for name in specs:
             for seed in seeds:
                 idle, loaded = runs["idle"][(name, seed)], runs["loaded"][(name, seed)]
                 identical, note = compare(work / "idle" / f"{name}-s{seed}", work / "loaded" / f"{name}-s{seed}")
                 identical = identical and idle["rc"] == loaded["rc"]
+                if identical and idle["rc"] != 0:
+                    neither += 1
+                    note = note or "no layout in either run"
                 same += identical
                 emit(f"{name:44} {seed:>4} {idle['rc']:>7} {idle['seconds']:>7} {loaded['rc']:>7} "
                      f"{loaded['seconds']:>7} {'yes' if identical else 'NO':>5}  {note}")
-        emit(f"identical {same}/{len(specs) * len(seeds)} (layout JSON apart from solve.seconds and "
-             f"solve.first_feasible_seconds; other files byte for byte)")
+        emit(f"identical {same}/{len(specs) * len(seeds)} ({neither} of them without a layout in both runs; "
+             f"layout JSON apart from solve.seconds and solve.first_feasible_seconds; other files byte for byte)")
     if args.out:
         args.out.parent.mkdir(parents=True, exist_ok=True)
         args.out.write_text("\n".join(lines) + "\n")
