@@ -40,10 +40,11 @@ RESIZE_WEIGHT = 0.05
 
 
 @njit(cache=True)
-def violation(work, edge_a, edge_b, need, on_boundary, width, height, wall, outline_given, per_edge):
+def violation(work, edge_a, edge_b, need, group_end, on_boundary, width, height, wall, outline_given, per_edge):
     """(violation in metres, bounding box area) of a packing (representation.pack_state's
     `work`); per_edge[k] gets door k's share, which the moves read to pick unmet doors.
-    `outline_given`: onB is measured to the outline (width x height), else to the packing's
+    A door of an L-room is a group of alternative edges (its box's, its arm's; group_end):
+    the best of them counts. `outline_given`: onB is measured to the outline (width x height), else to the packing's
     bounding box, the boundary the tool will draw round it."""
     n = work.x.shape[0]
     pos_p, pos_q = work.pos_p, work.pos_q
@@ -66,6 +67,14 @@ def violation(work, edge_a, edge_b, need, on_boundary, width, height, wall, outl
             gap = y[b] - (y[a] + h[a] + wall)
             overlap = min(x[a] + w[a], x[b] + w[b]) - max(x[a], x[b])
         per_edge[k] = abs(gap) + max(0.0, need[k] - overlap)
+    doors = 0.0
+    start = 0
+    for g in range(group_end.shape[0]):
+        best = per_edge[start]
+        for k in range(start + 1, group_end[g]):
+            best = min(best, per_edge[k])
+        doors += best
+        start = group_end[g]
     outer_w = width if outline_given else right
     outer_h = height if outline_given else top
     away = 0.0
@@ -75,5 +84,5 @@ def violation(work, edge_a, edge_b, need, on_boundary, width, height, wall, outl
                         min(max(0.0, outer_w - x[i] - w[i]), max(0.0, outer_h - y[i] - h[i])))
     overflow = max(0.0, right - width) + max(0.0, top - height)
     overflow_weight = OVERFLOW_WEIGHT if outline_given else CHOSEN_OVERFLOW_WEIGHT
-    return (overflow_weight * overflow + ADJACENCY_WEIGHT * per_edge.sum() + BOUNDARY_WEIGHT * away,
+    return (overflow_weight * overflow + ADJACENCY_WEIGHT * doors + BOUNDARY_WEIGHT * away,
             right * top)

@@ -95,10 +95,17 @@ def compile_from_start(
     formulation = options.formulation
     rects_start: dict[str, Rect] | None = dict(start) if start is not None else None
     generated: Generated | None = None
+    made_l: list[str] = []
+    k4s: list = []
     if options.strategy == "thesis":
         formulation = THESIS_AS_WRITTEN
         rects_start = None
     elif rects_start is None:
+        k4s = structure.undrawable(spec)  # four rooms joined pairwise, before any is made an L
+        spec, made_l = structure.with_l_rooms(spec)
+        if made_l and not options.quiet:
+            print(f"compile: {', '.join(made_l)} drawn as L-shaped rooms (four rooms joined pairwise "
+                  "cannot all be rectangles)", file=sys.stderr)
         undrawable = structure.undrawable(spec)
         if undrawable:
             timings["total"] = time.monotonic() - began
@@ -121,7 +128,12 @@ def compile_from_start(
             print(f"compile: the boundary grew to {generated.grown[0]:g} x {generated.grown[1]:g} m "
                   f"for this arrangement (--grow-boundary)", file=sys.stderr)
     if spec.arms:
-        return _compile_l_rooms(spec, options, rects_start, progress, timings, began, deadline, generated)
+        result = _compile_l_rooms(spec, options, rects_start, progress, timings, began, deadline, generated)
+        if result.layout is None and generated is not None and made_l:
+            # the L the generator gave them did not help within its work limits: say which
+            # rooms make the graph hard to draw, and why
+            result = replace(result, diagnostics=result.diagnostics + k4s)
+        return result
     # a verified start polished with nothing searched after: the model needs only the
     # separations of the start's relations (model.settle_separations, in _polish_start)
     checked = (_verified_start(spec, rects_start)

@@ -28,7 +28,7 @@ import numpy as np
 from numba import njit
 
 from layoutdsl.layout.geometry import Rect, RoomSizes
-from layoutdsl.syntax.ast import Spec
+from layoutdsl.syntax.ast import Spec, arm_id
 
 Work = namedtuple("_Work", "pos_p pos_q w h max_w max_h x y right_edges top_edges left_edges bottom_edges")
 """The arrays one packing works in (_pack_into), made once a chain and reused for every move."""
@@ -243,6 +243,9 @@ class Rooms:
     edge_a: np.ndarray
     edge_b: np.ndarray
     need: np.ndarray
+    group_end: np.ndarray
+    """Doors as groups of alternative edges (an L-room's box or arm): edges
+    group_end[g - 1]:group_end[g] form door g; the cost counts the best of each."""
     door_ptr: np.ndarray
     door_to: np.ndarray
     on_boundary: np.ndarray
@@ -258,8 +261,20 @@ class Rooms:
         ids = [room.id for room in spec.rooms]
         index = {room_id: i for i, room_id in enumerate(ids)}
         utilization = spec.settings.door_utilization
-        edges = [(index[adj.a], index[adj.b], adj.door / utilization) for adj in spec.adjacencies
-                 if adj.a in index and adj.b in index]
+        edges, groups = [], []
+        for adj in spec.adjacencies:
+            if adj.a not in index or adj.b not in index:
+                continue
+            # a door of an L-room (its box and arm packed as two rooms, layout.lshape
+            # .seeds_spec) is met by either of its rectangles: one group of alternatives
+            joined = arm_id(adj.a) == adj.b or arm_id(adj.b) == adj.a
+            ends_a = [adj.a] + ([arm_id(adj.a)] if not joined and arm_id(adj.a) in index else [])
+            ends_b = [adj.b] + ([arm_id(adj.b)] if not joined and arm_id(adj.b) in index else [])
+            door = len(set(groups))
+            for a in ends_a:
+                for b in ends_b:
+                    edges.append((index[a], index[b], adj.door / utilization))
+                    groups.append(door)
         door_ptr, door_to = _door_lists(len(ids), edges)
         return cls(
             ids=ids,
@@ -269,6 +284,8 @@ class Rooms:
             edge_a=np.array([e[0] for e in edges], dtype=np.int64),
             edge_b=np.array([e[1] for e in edges], dtype=np.int64),
             need=np.array([e[2] for e in edges], dtype=np.float64),
+            group_end=np.array([k + 1 for k in range(len(edges)) if k + 1 == len(edges) or groups[k + 1] != groups[k]],
+                               dtype=np.int64),
             door_ptr=door_ptr, door_to=door_to,
             on_boundary=np.array([room.on_boundary for room in spec.rooms], dtype=np.bool_),
             width=float(outline[0]), height=float(outline[1]), wall=spec.settings.walldim,
