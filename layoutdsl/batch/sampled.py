@@ -33,6 +33,19 @@ def parse_sample(text: str) -> tuple[str, int]:
     return kind, number
 
 
+def parse_rooms(text: str) -> tuple[int, int]:
+    """`10-40` -> (10, 40), within the sampler's 10-150; a bad value is a usage error."""
+    from layoutdsl.sample import MAX_ROOMS, MIN_ROOMS
+
+    low, sep, high = text.partition("-")
+    if not sep or not low.strip().isdigit() or not high.strip().isdigit():
+        raise BatchInputError(f"--sample-rooms {text}: expected MIN-MAX, e.g. 10-40")
+    rooms = (int(low), int(high))
+    if not MIN_ROOMS <= rooms[0] <= rooms[1] <= MAX_ROOMS:
+        raise BatchInputError(f"--sample-rooms {text}: a range within {MIN_ROOMS}-{MAX_ROOMS}")
+    return rooms
+
+
 def sample_jobs(
     samples: list[tuple[str, int]],
     variants: int,
@@ -42,9 +55,11 @@ def sample_jobs(
     limits: SolveLimits = SolveLimits(),
     formats: tuple[str, ...] = ("xml", "png", "world", "map"),
     timeout: float = 600.0,
+    rooms: tuple[int, int] | None = None,
 ) -> list[Job]:
     """One job per (sample, variant 1..N), samples in order; `model` is a grammar saved by
-    `layoutdsl sample --save-model` (None: the shipped one)."""
+    `layoutdsl sample --save-model` (None: the shipped one); `rooms` narrows the samples' room
+    count (None: the sampler's 10-150)."""
     from layoutdsl.sample import ModelError, SampleError, SpecSampler, load_grammar
     from layoutdsl.sizes import ModelError as SizesError
 
@@ -58,7 +73,7 @@ def sample_jobs(
             raise BatchInputError(f"--sample {kind}:{count}: the sampler model knows the kinds "
                                   f"{', '.join((*grammar.kinds, 'any'))}")
         try:
-            sampler = SpecSampler(grammar, kind, seed=base_seed)
+            sampler = SpecSampler(grammar, kind, seed=base_seed, rooms=rooms)
         except (SampleError, SizesError) as error:
             raise BatchInputError(f"--sample {kind}:{count}: {error}") from None
         for index in range(1, count + 1):

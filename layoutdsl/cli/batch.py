@@ -57,6 +57,8 @@ def add_parser(subparsers) -> None:
     parser.add_argument("--sample", action="append", default=[], metavar="KIND:N",
                         help="also make N new buildings of a kind drawn by the sampler (e.g. school:1000; "
                         "see `layoutdsl sample`); each building's folder gets its spec; repeatable")
+    parser.add_argument("--sample-rooms", metavar="MIN-MAX",
+                        help="only sampled buildings with this many rooms (within the default 10-150), e.g. 10-40")
     parser.add_argument("--sample-model", metavar="FILE",
                         help="the sampler's grammar, saved by `layoutdsl sample --save-model` (default: the shipped one)")
     parser.add_argument("-o", "--output", required=True, metavar="OUTDIR", help="the dataset's folder")
@@ -137,11 +139,12 @@ def _run(args: argparse.Namespace, out: Output, fields: dict) -> int:
         jobs = plan_jobs(args.inputs, args.variants, base_seed=args.seed, limits=limits,
                          formats=formats, timeout=timeout) if args.inputs else []
         if args.sample:
-            from layoutdsl.batch.sampled import parse_sample, sample_jobs
+            from layoutdsl.batch.sampled import parse_rooms, parse_sample, sample_jobs
 
+            rooms = parse_rooms(args.sample_rooms) if args.sample_rooms else None
             jobs += sample_jobs([parse_sample(text) for text in args.sample], args.variants,
                                 base_seed=args.seed, model=args.sample_model, limits=limits,
-                                formats=formats, timeout=timeout)
+                                formats=formats, timeout=timeout, rooms=rooms)
         names = [job.building for job in jobs]
         if len(set(names)) != len(names):
             clash = next(name for name in names if names.count(name) > 1)

@@ -62,12 +62,27 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     parser.add_argument("--sizes", metavar="FILE",
                         help="a size model file (default: the shipped one, or one fitted on --train)")
     parser.add_argument("--save-model", metavar="FILE", help="write the grammar fitted with --train to FILE")
+    parser.add_argument("--rooms", type=room_range, metavar="MIN-MAX",
+                        help="only samples with this many rooms (within 10-150, the default); e.g. 10-40")
     parser.add_argument("--typical-sizes", action="store_true",
                         help="give each room its label's typical sizes instead of sizes drawn from the model's "
                         "laws (less varied buildings, no outliers such as a corridor three times its usual length)")
     add_output_arguments(parser, diagnostics=True)
     parser.set_defaults(run=run)
     return parser
+
+
+def room_range(text: str) -> tuple[int, int]:
+    """`10-40` -> (10, 40), within the sampler's 10-150 (a usage error otherwise)."""
+    from layoutdsl.sample import MAX_ROOMS, MIN_ROOMS
+
+    low, sep, high = text.partition("-")
+    if not sep or not low.strip().isdigit() or not high.strip().isdigit():
+        raise argparse.ArgumentTypeError(f"expected MIN-MAX rooms, e.g. 10-40, got {text!r}")
+    rooms = (int(low), int(high))
+    if not MIN_ROOMS <= rooms[0] <= rooms[1] <= MAX_ROOMS:
+        raise argparse.ArgumentTypeError(f"rooms {text}: a range within {MIN_ROOMS}-{MAX_ROOMS}")
+    return rooms
 
 
 def run(args: argparse.Namespace) -> int:
@@ -159,7 +174,8 @@ def _write_samples(args, out: Output, grammar, sizes, count: int) -> int:
     if outdir.exists() and not outdir.is_dir():
         return out.finish(out.error(f"`{outdir}` exists and is not a folder", kind="io", path=str(outdir)))
     try:
-        sampler = SpecSampler(grammar, args.like, sizes, seed=args.seed, drawn_sizes=not args.typical_sizes)
+        sampler = SpecSampler(grammar, args.like, sizes, seed=args.seed, drawn_sizes=not args.typical_sizes,
+                              rooms=args.rooms)
     except (SampleError, SizesError) as error:
         return out.finish(out.error(str(error)))
     records = []

@@ -46,7 +46,7 @@ OWN_SHARE = 0.6
 plan of the kind: high keeps a sample's style (a school of classroom rows stays one), low
 mixes plans more."""
 
-MAX_ATTEMPTS = 200
+MAX_ATTEMPTS = 1000
 """Draws per sample before giving up (in practice a handful at most)."""
 
 CONNECTOR_FLOOR = 0.02
@@ -72,9 +72,13 @@ def sample_seed(seed: int, index: int, like: str) -> int:
 class Sampler:
     """Draws room graphs `like` a kind from a grammar; holds the novelty check's cache."""
 
-    def __init__(self, grammar: Grammar, like: str = "school") -> None:
+    def __init__(self, grammar: Grammar, like: str = "school", rooms: tuple[int, int] = (MIN_ROOMS, MAX_ROOMS)) -> None:
         self.grammar = grammar
         self.like = like
+        if not MIN_ROOMS <= rooms[0] <= rooms[1] <= MAX_ROOMS:
+            raise SampleError(f"rooms {rooms[0]}-{rooms[1]}: samples have {MIN_ROOMS}-{MAX_ROOMS} rooms")
+        self.rooms = rooms
+        """Samples outside this range of rooms are drawn again (a narrower range costs draws)."""
         self.templates = grammar.plans_of(like)
         if not self.templates:
             kinds = ", ".join(grammar.kinds) or "none"
@@ -103,9 +107,10 @@ class Sampler:
         """One new room graph (see the module doc); raises SampleError after MAX_ATTEMPTS."""
         for _ in range(MAX_ATTEMPTS):
             graph = self.draw(rng)
-            if MIN_ROOMS <= graph.number_of_nodes() <= MAX_ROOMS and not self.novelty.is_copy(graph):
+            if self.rooms[0] <= graph.number_of_nodes() <= self.rooms[1] and not self.novelty.is_copy(graph):
                 return graph
-        raise SampleError(f"no new graph of {MIN_ROOMS}-{MAX_ROOMS} rooms in {MAX_ATTEMPTS} draws")
+        raise SampleError(f"no new graph of {self.rooms[0]}-{self.rooms[1]} rooms in {MAX_ATTEMPTS} draws "
+                          f"(the model's {self.like} plans may not come near that size)")
 
     def draw(self, rng: random.Random) -> nx.Graph:
         """One draw of the grammar, before the size and novelty checks."""

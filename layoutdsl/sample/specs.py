@@ -46,8 +46,9 @@ class SpecSampler:
     """Draws sampled specs; holds the grammar, the size model and the novelty cache."""
 
     def __init__(self, grammar: Grammar, like: str = "school", sizes: SizeModel | None = None, seed: int = 0,
-                 *, drawn_sizes: bool = True) -> None:
-        self.sampler = Sampler(grammar, like)
+                 *, drawn_sizes: bool = True, rooms: tuple[int, int] | None = None) -> None:
+        self.sampler = Sampler(grammar, like) if rooms is None else Sampler(grammar, like, rooms)
+        self.rooms = rooms
         self.drawn_sizes = drawn_sizes
         """Room sizes drawn from the size model's laws (default), else each label's typical
         sizes: fewer outliers such as a corridor three times its typical length."""
@@ -62,7 +63,8 @@ class SpecSampler:
         """Comment lines saying where a spec came from (a spec's `#` starts a comment)."""
         return (
             f"# sampled by `layoutdsl sample --like {self.like} --seed {self.seed}"
-            f"{'' if self.drawn_sizes else ' --typical-sizes'}`, sample {index}\n"
+            f"{'' if self.drawn_sizes else ' --typical-sizes'}"
+            f"{'' if self.rooms is None else f' --rooms {self.rooms[0]}-{self.rooms[1]}'}`, sample {index}\n"
             f"# template plan {graph.graph['template']}; sampler model {self.grammar.digest}; "
             f"{graph.number_of_nodes()} rooms, {graph.number_of_edges()} adjacencies\n"
         )

@@ -14,7 +14,7 @@ import pytest
 
 from layoutdsl.api import load_spec
 from layoutdsl.batch.jobs import BatchInputError
-from layoutdsl.batch.sampled import parse_sample, sample_jobs
+from layoutdsl.batch.sampled import parse_rooms, parse_sample, sample_jobs
 from layoutdsl.cli import main
 from layoutdsl.layout import Layout
 from layoutdsl.layout.verify import verify
@@ -42,6 +42,25 @@ def test_parse_sample():
     for bad in ("school", "school:", ":3", "school:x", "school:0"):
         with pytest.raises(BatchInputError):
             parse_sample(bad)
+
+
+def test_parse_rooms_and_a_narrower_range():
+    assert parse_rooms("10-20") == (10, 20)
+    for bad in ("10", "5-20", "20-10", "10-151", "a-b"):
+        with pytest.raises(BatchInputError):
+            parse_rooms(bad)
+    jobs = sample_jobs([("school", 4)], 1, rooms=(10, 20))
+    for job in jobs:
+        spec, _ = load_spec_text(job.text)
+        assert 10 <= len(spec.rooms) <= 20
+        assert "--rooms 10-20`" in job.text.splitlines()[0]
+
+
+def load_spec_text(text: str):
+    from layoutdsl.api import lint_source
+    from layoutdsl.diagnostics.source import Source
+
+    return lint_source(Source("sample.lay", text))
 
 
 def test_sample_jobs_carry_the_sampler_specs(small_model):

@@ -97,3 +97,12 @@ def test_typical_sizes_keep_the_graph_and_change_the_sizes(tmp_path):
     assert a.adjacencies == b.adjacencies
     assert [r.target_w for r in a.rooms] != [r.target_w for r in b.rooms]
     assert "--typical-sizes`, sample 1" in (typical / "school-0001.lay").read_text().splitlines()[0]
+
+
+def test_rooms_narrows_the_samples(tmp_path, capsys):
+    out = tmp_path / "small"
+    assert main(["sample", "--like", "any", "-n", "6", "-o", str(out), "--rooms", "10-25", "--format", "json"]) == 0
+    result = json.loads(capsys.readouterr().out)
+    assert all(10 <= s["rooms"] <= 25 for s in result["samples"])
+    assert main(["sample", "-n", "1", "-o", str(out), "--rooms", "30-20"]) == 2
+    assert "a range within 10-150" in capsys.readouterr().err
