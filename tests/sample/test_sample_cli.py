@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import json
 
+import pytest
+
 from layoutdsl.api import load_spec
 from layoutdsl.cli import main
 from layoutdsl.sample import load_grammar
@@ -104,5 +106,7 @@ def test_rooms_narrows_the_samples(tmp_path, capsys):
     assert main(["sample", "--like", "any", "-n", "6", "-o", str(out), "--rooms", "10-25", "--format", "json"]) == 0
     result = json.loads(capsys.readouterr().out)
     assert all(10 <= s["rooms"] <= 25 for s in result["samples"])
-    assert main(["sample", "-n", "1", "-o", str(out), "--rooms", "30-20"]) == 2
+    with pytest.raises(SystemExit) as exit_info:  # argparse's usage error
+        main(["sample", "-n", "1", "-o", str(out), "--rooms", "30-20"])
+    assert exit_info.value.code == 2
     assert "a range within 10-150" in capsys.readouterr().err
