@@ -1,4 +1,4 @@
-"""compile/lshape.py: how the construction sees an L-room (two joined boxes)."""
+"""layout/lshape.py: how the generator sees an L-room (two joined boxes)."""
 
 from __future__ import annotations
 
