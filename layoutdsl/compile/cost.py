@@ -40,12 +40,13 @@ RESIZE_WEIGHT = 0.05
 
 
 @njit(cache=True)
-def violation(work, edge_a, edge_b, need, group_end, on_boundary, width, height, wall, outline_given, per_edge):
+def violation(work, edge_a, edge_b, need, group_end, on_boundary, width, height, wall, outline_given,
+              per_edge):
     """(violation in metres, bounding box area) of a packing (representation.pack_state's
     `work`); per_edge[k] gets door k's share, which the moves read to pick unmet doors.
     A door of an L-room is a group of alternative edges (its box's, its arm's; group_end):
-    the best of them counts. `outline_given`: onB is measured to the outline (width x height), else to the packing's
-    bounding box, the boundary the tool will draw round it."""
+    the best of them counts. `outline_given`: onB is measured to the outline (width x
+    height), else to the packing's bounding box, the boundary the tool will draw round it."""
     n = work.x.shape[0]
     pos_p, pos_q = work.pos_p, work.pos_q
     x, y, w, h = work.x, work.y, work.w, work.h

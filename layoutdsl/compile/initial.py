@@ -78,12 +78,12 @@ a corner or an end take more than their side."""
 
 
 LENGTHEN_MAX_DENSITY = 0.5
-"""Target room area per m² of boundary above which corridors keep their drawn length: a
-dense plan has no room to give them. Measured with the construction this generator
-replaced (seeds 0-2, 45 s): on school_hendersonhighschool (0.44) lengthened corridors construct 3 of 3 in 6-10 s, 1 of 3
-without; on office_floorplanLOWER (0.87) lengthened took 4.7-36 s, unlengthened 0.6-5.3 s;
-on school_scuolasconosciuta (0.57, L-rooms) lengthened found nothing in 30 s (seeds 0-1),
-unlengthened 0.3 s."""
+"""Target room area per m² of boundary above which corridors keep their drawn length: a dense
+plan has no room to give them. Measured with the construction this generator replaced (seeds
+0-2, 45 s): on school_hendersonhighschool (0.44) lengthened corridors construct 3 of 3 in
+6-10 s, 1 of 3 without; on office_floorplanLOWER (0.87) lengthened took 4.7-36 s,
+unlengthened 0.6-5.3 s; on school_scuolasconosciuta (0.57, L-rooms) lengthened found nothing
+in 30 s (seeds 0-1), unlengthened 0.3 s."""
 
 
 def _corridors_lengthened(spec: Spec, sides: dict[str, tuple[float, float]],
