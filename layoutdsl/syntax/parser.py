@@ -269,16 +269,6 @@ def parse_line(
     if diagnostics is not None:
         diagnostics.extend(found)
     return node
-    found: list[Diagnostic] = []
-    with build.building_line(filename, line, found):
-        node = get_parser().parse(text, start=rule)
-    if memo is not None:
-        if len(memo) >= _parsed_lines_limit:
-            memo.clear()  # simpler than LRU, and a whole re-parse costs well under a second
-        memo[key] = (node, tuple(found))
-    if diagnostics is not None:
-        diagnostics.extend(found)
-    return node
 
 
 # ===== Named syntax errors =====
