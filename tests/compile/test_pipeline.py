@@ -209,7 +209,9 @@ def test_a_39_room_compile_keeps_its_time_limit():
     big, _ = planted(6, 3)
     began = time.monotonic()
     result = compile_spec(big, SolveOptions(time_limit=2, quiet=True, strategy="thesis"))
-    assert time.monotonic() - began < 2 + 3.0
+    # the thesis' model of 39 rooms runs for minutes unless the clock stops it; the slack is for
+    # a loaded machine, where translating and freeing the model alone took 3-8 s
+    assert time.monotonic() - began < 2 + 10.0
     assert result.layout is not None or result.status == "no_layout"
 
 
@@ -217,8 +219,12 @@ def test_a_39_room_planted_start_is_polished_and_verified():
     from planted import planted
 
     big, rects = planted(6, 3)
-    result = compile_spec(big, SolveOptions(time_limit=3, quiet=True, formulation=COVER_EVERYWHERE), start=rects)
+    # the polish alone (search off), under a cap far above its work: its node limit, not the
+    # clock, decides, so a loaded machine gives the same result (a 3 s cap did not, under load)
+    result = compile_spec(big, SolveOptions(time_limit=120, quiet=True, search=False, formulation=COVER_EVERYWHERE),
+                          start=rects)
     assert result.layout is not None, result.diagnostics
+    assert not result.layout.solve.wall_clock_limited
     assert verify(big, result.layout) == []
     assert result.layout.solve.objective < objective_of_rects(big, rects, formulation=COVER_EVERYWHERE) - 0.5
 
