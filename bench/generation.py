@@ -333,13 +333,17 @@ def _compile_graph(path: str, time_limit: float, seed: int, kind: str, search: b
     from layoutdsl.solve import SolveOptions
     from layoutdsl.syntax.format import format_spec
 
+    from dataclasses import replace
+
     graph, diagnostics = read_graph(path)
     if graph is None or has_errors(diagnostics):
         return {"verified": False, "reason": "unreadable: " + "; ".join(d.message for d in diagnostics)}
     row = {"rooms": graph.number_of_nodes(), "cycles": cycle_rank(graph), "k4": has_k4(graph)}
     spec = spec_from_graph(graph, kind=kind, name=Path(path).stem)
-    # the spec as `layoutdsl import x.csv` writes it, read back and checked as compile reads it
-    checked, diagnostics = lint_source(Source(Path(path).stem + ".lay", format_spec(spec)))
+    # the spec as `layoutdsl import x.csv` writes it, read back and checked as compile reads
+    # it: without a boundary section, so the tool chooses the boundary and may fit it to the
+    # layout (written in, it would be a limit the user set)
+    checked, diagnostics = lint_source(Source(Path(path).stem + ".lay", format_spec(replace(spec, boundary=None))))
     if checked is None or has_errors(diagnostics):
         row.update(verified=False, reason="spec: " + "; ".join(f"{d.code} {d.message}" for d in diagnostics
                                                                if d.is_error))
