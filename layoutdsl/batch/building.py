@@ -162,7 +162,7 @@ def make_building(job: Job) -> Outcome:
     from layoutdsl.layout import Layout
     from layoutdsl.solve import SolveOptions
     from layoutdsl.diagnostics.source import Source
-    from layoutdsl.layout.verify import verify
+    from layoutdsl.layout.verify import drawn_boundary, verify
 
     if job.crash == "abort":
         os.abort()  # test-only: dies the way SCIP does on a double free
@@ -184,7 +184,7 @@ def make_building(job: Job) -> Outcome:
     layout_json = result.layout.to_json()
     # verify what is written, read back from its own bytes, not the object it came from
     layout = Layout.from_json(layout_json)
-    violations = verify(spec, layout)
+    violations = verify(drawn_boundary(spec, layout), layout)
     if violations:
         return Outcome(job.building, False, f"verify: {violations[0].rule}: {violations[0].message}")
     files = {f"{job.building}.layout.json": layout_json.encode("utf-8")}

@@ -29,7 +29,7 @@ adjacency is met when either rectangle faces the other room across one wall.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 from layoutdsl.syntax.ast import Spec
 from layoutdsl.layout import Layout, PlacedRoom, shared_wall
@@ -67,6 +67,18 @@ def verify(spec: Spec, layout: Layout, tol: float = TOLERANCE) -> list[Violation
     violations += _check_clusters(spec, placed, tol)
     violations += _check_portals(spec, layout, placed, tol)
     return violations
+
+
+def drawn_boundary(spec: Spec, layout: Layout) -> Spec:
+    """The spec with the boundary its layout was drawn in, where the tool may draw its own:
+    a boundary the tool chose (no `boundary` section) is fitted to the building compile
+    draws, and `--grow-boundary` may grow a given one (the layout reports it). Verifying a
+    written layout against its spec goes through here; a boundary the user set stays."""
+    boundary = spec.boundary
+    grown = layout.solve is not None and layout.solve.grown_boundary is not None
+    if boundary is None or not (boundary.chosen or grown):
+        return spec
+    return replace(spec, boundary=replace(boundary, w=layout.width, h=layout.height))
 
 
 def _check_room_set(spec: Spec, layout: Layout, tol: float):

@@ -9,7 +9,7 @@ same command gives the same bytes on any machine, and `-n 10` gives the first te
 from __future__ import annotations
 
 import random
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import networkx as nx
 
@@ -76,4 +76,11 @@ class SpecSampler:
         name = sample_name(self.like, index)
         spec = spec_from_graph(graph, kind=graph.graph["kind"], model=self.sizes,
                                rng=rng if self.drawn_sizes else None, name=name)
-        return Sample(name, index, graph, spec, self.header(index, graph) + format_spec(spec))
+        # No boundary section, as `layoutdsl import` writes a room graph: compile chooses the
+        # same boundary from the same rooms (sizes.resolve) and may fit it to the building it
+        # draws; written in, it would be a limit as if the user had set it.
+        boundary = spec.boundary
+        text = (self.header(index, graph)
+                + f"# No boundary section: the tool chooses {boundary.w:g} x {boundary.h:g} m for these rooms "
+                f"and compile may grow it.\n" + format_spec(replace(spec, boundary=None)))
+        return Sample(name, index, graph, spec, text)
