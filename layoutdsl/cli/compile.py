@@ -47,7 +47,7 @@ def add_parser(subparsers) -> None:
                         help="stop at this relative optimality gap, e.g. 0.01 (setting gap)")
     parser.add_argument("--seed", type=non_negative_int, metavar="N", help="random seed (setting seed)")
     parser.add_argument("--emphasis", choices=EMPHASES,
-                        help="SCIP emphasis (setting emphasis; default heuristics)")
+                        help="SCIP emphasis (setting emphasis; default: default)")
     parser.add_argument("--node-limit", type=positive_int, metavar="N",
                         help="stop after N branch-and-bound nodes: a deterministic stopping rule")
     parser.add_argument("--solution-limit", type=positive_int, metavar="N",

@@ -73,7 +73,7 @@ class SolveOptions:
     """Stop when (incumbent - bound) / |incumbent| falls to this."""
     seed: int = 0
     """SCIP's randomization/randomseedshift and the construction's seed."""
-    emphasis: str = "heuristics"
+    emphasis: str = "default"
     """One of EMPHASES: SCIP's meta setting (heuristics = aggressive heuristics)."""
     node_limit: int | None = None
     """Stop after this many branch-and-bound nodes (deterministic); None: DEFAULT_NODE_LIMIT."""
