@@ -66,6 +66,9 @@ class Generated:
     """The wall clock cut the generator off before its work limits."""
     grown: tuple[float, float] | None = None
     """(width, height) of a boundary grown beyond the spec's (None: not grown)."""
+    unmet: tuple[tuple[str, str, float], ...] = ()
+    """Without rectangles: the doors the closest annealed arrangement left unmet, (room,
+    room, metres) worst first; they say where the room graph is hard to draw."""
 
 
 def generate(spec: Spec, *, seed: int = 0, deadline: float | None = None, use_hints: bool = True,
@@ -130,9 +133,13 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
         return initial.initial_state(drawn, rooms, _embedding_seed(seed, round_index, chain))
 
     done_rounds = moves = 0
+
+    def unmet() -> tuple[tuple[str, str, float], ...]:
+        return tuple(rooms.unmet_doors(best[0].state)) if best else ()
+
     for found in schedule.rounds(rooms, starts, seed, limits.deadline, max_rounds):
         if found is None:
-            return Generated(None, spec, "", done_rounds, moves, cut_off=True)
+            return Generated(None, spec, "", done_rounds, moves, cut_off=True, unmet=unmet())
         done_rounds += 1
         moves += found.moves
         if not best or (found.violation, found.cost) < (best[0].violation, best[0].cost):
@@ -151,8 +158,8 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
                 grown = (target.boundary.w, target.boundary.h)
             return Generated(rects, target, "annealed", done_rounds, moves, grown=grown)
         if time.monotonic() >= limits.deadline:
-            return Generated(None, spec, "", done_rounds, moves, cut_off=True)
-    return Generated(None, spec, "", done_rounds, moves)
+            return Generated(None, spec, "", done_rounds, moves, cut_off=True, unmet=unmet())
+    return Generated(None, spec, "", done_rounds, moves, unmet=unmet())
 
 
 def _sized(spec: Spec, geometry: dict[str, Rect], rng: random.Random, seed: int,

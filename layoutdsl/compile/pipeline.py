@@ -133,7 +133,7 @@ def compile_from_start(
             # the L the generator gave them did not help within its work limits: say which
             # rooms make the graph hard to draw, and why
             result = replace(result, diagnostics=result.diagnostics + k4s)
-        return result
+        return _with_unmet_doors(result, spec, generated)
     # a verified start polished with nothing searched after: the model needs only the
     # separations of the start's relations (model.settle_separations, in _polish_start)
     checked = (_verified_start(spec, rects_start)
@@ -160,7 +160,17 @@ def compile_from_start(
         timings["total"] = time.monotonic() - began
         return CompileResult(best[1], [], best[2], timings, outcome)
 
-    return _no_layout(spec, options, outcome, failures, explain_infeasible, timings, began)
+    return _with_unmet_doors(_no_layout(spec, options, outcome, failures, explain_infeasible, timings, began),
+                             spec, generated)
+
+
+def _with_unmet_doors(result: CompileResult, spec: Spec, generated: Generated | None) -> CompileResult:
+    """A result without a layout, with I909 naming the doors the generator's closest
+    arrangement left unmet (when it had one): where the room graph is hard to draw."""
+    if result.layout is not None or generated is None or generated.rects is not None or not generated.unmet:
+        return result
+    note = explain.unmet_doors(spec, generated.unmet, generated.rounds, generated.moves)
+    return replace(result, diagnostics=result.diagnostics + [note])
 
 
 def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, Rect] | None,

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from layoutdsl.compile.cost import violation as cost_violation
 from layoutdsl.layout.geometry import Rect, RoomSizes
 from layoutdsl.syntax.ast import Spec, arm_id
 
@@ -253,6 +254,8 @@ class Rooms:
     height: float
     wall: float
     outline_given: bool
+    doors: tuple[tuple[str, str], ...] = ()
+    """The spec's two rooms of each door (group), in group order."""
 
     @classmethod
     def of(cls, spec: Spec, sides: dict[str, tuple[float, float]], outline: tuple[float, float],
@@ -262,6 +265,7 @@ class Rooms:
         index = {room_id: i for i, room_id in enumerate(ids)}
         utilization = spec.settings.door_utilization
         edges, groups = [], []
+        door_rooms: list[tuple[str, str]] = []
         for adj in spec.adjacencies:
             if adj.a not in index or adj.b not in index:
                 continue
@@ -271,6 +275,7 @@ class Rooms:
             ends_a = [adj.a] + ([arm_id(adj.a)] if not joined and arm_id(adj.a) in index else [])
             ends_b = [adj.b] + ([arm_id(adj.b)] if not joined and arm_id(adj.b) in index else [])
             door = len(set(groups))
+            door_rooms.append((adj.a, adj.b))
             for a in ends_a:
                 for b in ends_b:
                     edges.append((index[a], index[b], adj.door / utilization))
@@ -289,7 +294,7 @@ class Rooms:
             door_ptr=door_ptr, door_to=door_to,
             on_boundary=np.array([room.on_boundary for room in spec.rooms], dtype=np.bool_),
             width=float(outline[0]), height=float(outline[1]), wall=spec.settings.walldim,
-            outline_given=outline_given)
+            outline_given=outline_given, doors=tuple(door_rooms))
 
     def state_of(self, geometry: Mapping[str, Rect]) -> State:
         """The state of a geometry whose rectangles may overlap: P by x - y of the centres,
@@ -305,6 +310,23 @@ class Rooms:
         long_side = np.clip(np.maximum(w, h), self.bounds[:, 0], self.bounds[:, 1])
         short_side = np.minimum(np.clip(np.minimum(w, h), self.bounds[:, 2], self.bounds[:, 3]), long_side)
         return p, q, h > w, long_side, short_side
+
+    def unmet_doors(self, state: State) -> list[tuple[str, str, float]]:
+        """(room, room, metres) of each door the state's packing does not meet, worst first:
+        the metres are the gap between the two rooms plus the shared wall they lack."""
+        p, q, turned, long_side, short_side = state
+        work = new_work(len(self.ids))
+        pack_state(p, q, turned, long_side, short_side, self.bounds, self.wall, self.door_ptr, self.door_to, work)
+        per_edge = np.zeros(self.edge_a.shape[0])
+        cost_violation(work, self.edge_a, self.edge_b, self.need, self.group_end, self.on_boundary, self.width,
+                  self.height, self.wall, self.outline_given, per_edge)
+        unmet, start = [], 0
+        for g, end in enumerate(self.group_end):
+            metres = float(per_edge[start:end].min())
+            if metres > 1e-6 and g < len(self.doors):
+                unmet.append((*self.doors[g], round(metres, 2)))
+            start = end
+        return sorted(unmet, key=lambda door: (-door[2], door[0], door[1]))
 
     def geometry(self, state: State) -> dict[str, Rect]:
         """The packed rectangles of a state."""

@@ -125,3 +125,49 @@ def test_a_too_tight_boundary_grows_when_allowed_and_says_so():
     result = compile_spec(tight, SolveOptions(time_limit=30, quiet=True, search=False, grow_boundary=True))
     assert result.layout is not None
     assert result.layout.solve.grown_boundary == (result.layout.width, result.layout.height)
+
+
+def _gap_and_shortfall(a, b, walldim: float, need: float) -> float:
+    """Independent measure of how far a door is from met: the best over the two axes of
+    |gap - wall| plus the shared wall it lacks."""
+    ax, ay, aw, ah = a
+    bx, by, bw, bh = b
+    gap_x = max(bx - ax - aw, ax - bx - bw)
+    gap_y = max(by - ay - ah, ay - by - bh)
+    overlap_x = min(ax + aw, bx + bw) - max(ax, bx)
+    overlap_y = min(ay + ah, by + bh) - max(ay, by)
+    return min(abs(gap_x - walldim) + max(0.0, need - overlap_y), abs(gap_y - walldim) + max(0.0, need - overlap_x))
+
+
+def test_a_graph_rectangles_cannot_draw_reports_the_doors_left_unmet():
+    # four offices joined pairwise, none allowed an L (compile stops at E908 before the
+    # generator; the generator alone searches and says which doors it could not close)
+    offices = [room(f"R{i}", 4.0, 4.0) for i in range(4)]
+    pairs = [adjacent(f"R{i}", f"R{j}") for i in range(4) for j in range(i + 1, 4)]
+    spec = Spec("k4", tuple(offices), Boundary(30.0, 30.0), tuple(pairs))
+    generated = generate(spec, seed=0, max_rounds=2)
+    assert generated.rects is None
+    assert generated.unmet, "no door reported unmet"
+    doors = {frozenset((adj.a, adj.b)) for adj in spec.adjacencies}
+    assert all(frozenset((a, b)) in doors and metres > 0 for a, b, metres in generated.unmet)
+    assert [m for *_pair, m in generated.unmet] == sorted((m for *_pair, m in generated.unmet), reverse=True)
+    assert generated.unmet == generate(spec, seed=0, max_rounds=2).unmet
+
+
+def test_unmet_doors_note_points_at_the_worst_door_and_names_its_triangle():
+    from layoutdsl.api import lint_source
+    from layoutdsl.compile.explain import unmet_doors
+    from layoutdsl.diagnostics.source import Source
+    from layoutdsl.syntax.format import format_spec
+
+    spec = cycle_spec()
+    a, b = spec.adjacencies[1].a, spec.adjacencies[1].b
+    # a third room joined to both makes the door close a triangle
+    third = [r.id for r in spec.rooms if r.id not in (a, b)][0]
+    spec = dataclasses.replace(spec, adjacencies=spec.adjacencies + (adjacent(a, third), adjacent(b, third)))
+    spec, _diagnostics = lint_source(Source("cycle.lay", format_spec(spec)))  # with the lines' spans
+    note = unmet_doors(spec, ((b, a, 3.5), ("F", "A", 0.02)), rounds=6, moves=1000)
+    assert note.code == "I909" and not note.is_error
+    assert note.span == spec.adjacencies[1].span
+    assert f"{b}-{a} 3.5 m" in note.notes[0]
+    assert any("triangle" in line and third in line for line in note.notes[1:])
