@@ -48,8 +48,6 @@ from layoutdsl.solve.quiet import native_output_silenced
 from layoutdsl.syntax.ast import Spec
 
 
-
-
 from collections.abc import Hashable, Mapping, Sequence
 
 from layoutdsl.solve.quiet import native_output_silenced
@@ -223,7 +221,6 @@ def tiling(
     overlap: Mapping[frozenset, float], wall: float, collapse: frozenset = frozenset(),
     outline: tuple[float, float] | None = None, seed: int = 0, seconds: float = 30.0,
     lower: Mapping[Hashable, tuple[float, float]] | None = None,
-    upper: Mapping[Hashable, tuple[float, float]] | None = None, ragged: bool = False,
 ) -> dict[Hashable, tuple[float, float, float, float]] | None:
     """(x, y, w, h) of every vertex realising `labeling` as a tiling of a rectangle, one wall
     between rooms, each side pulled to its target (w, h) in `targets`; vertices in
@@ -247,9 +244,8 @@ def tiling(
         x[v] = model.addVar(lb=0.0, name=f"x{i}")
         y[v] = model.addVar(lb=0.0, name=f"y{i}")
         least = (lower or {}).get(v, (0.0, 0.0))
-        most = (upper or {}).get(v, (None, None))
-        w[v] = model.addVar(lb=least[0], ub=most[0], name=f"w{i}")
-        h[v] = model.addVar(lb=least[1], ub=most[1], name=f"h{i}")
+        w[v] = model.addVar(lb=least[0], name=f"w{i}")
+        h[v] = model.addVar(lb=least[1], name=f"h{i}")
         model.addCons(x[v] + w[v] <= width)
         model.addCons(y[v] + h[v] <= height)
         if v in collapse:
@@ -264,23 +260,16 @@ def tiling(
     for (u, v), colour in labeling.items():
         if u in pole_set and v in pole_set:
             continue
-        # the outline is a rectangle (the rooms on it reach it) unless `ragged`: then the
-        # rooms along it may stop short of it, as real buildings' outlines do
+        # the outline is a rectangle: the rooms along it reach it
         if u == west:
-            if not ragged:
-                model.addCons(x[v] == 0)
-            continue
-        if v == east:
-            if not ragged:
-                model.addCons(x[u] + w[u] == width)
-            continue
-        if u == south:
-            if not ragged:
-                model.addCons(y[v] == 0)
-            continue
-        if v == north:
-            if not ragged:
-                model.addCons(y[u] + h[u] == height)
+            model.addCons(x[v] == 0)
+        elif v == east:
+            model.addCons(x[u] + w[u] == width)
+        elif u == south:
+            model.addCons(y[v] == 0)
+        elif v == north:
+            model.addCons(y[u] + h[u] == height)
+        if west == u or v == east or u == south or v == north:
             continue
         need = overlap.get(frozenset((u, v)), 0.0)
         if colour == "blue":
@@ -295,74 +284,18 @@ def tiling(
             model.addCons(x[v] + w[v] - x[u] >= need)
             model.addCons(w[u] >= need)
             model.addCons(w[v] >= need)
+    return _solved(model, objective, vertices, (x, y, w, h))
+
+
+def _solved(model, objective, vertices, boxes):
+    """(x, y, w, h) of each vertex at the LP's optimum, or None without a solution."""
     model.setObjective(objective, "minimize")
     with native_output_silenced():
         model.optimize()
     if model.getNSols() == 0:
         return None
     solution = model.getBestSol()
-    return {v: (solution[x[v]], solution[y[v]], solution[w[v]], solution[h[v]]) for v in vertices}
-
-
-
-
-
-def relaxed_tiling(
-    vertices: Sequence[Hashable], relations: Sequence[tuple[Hashable, Hashable, str]],
-    doors: Mapping[tuple[Hashable, Hashable], float], targets: Mapping[Hashable, tuple[float, float]],
-    bounds: Mapping[Hashable, tuple[float, float, float, float]], wall: float,
-    outline: tuple[float, float] | None = None, seed: int = 0, seconds: float = 30.0,
-) -> dict[Hashable, tuple[float, float, float, float]] | None:
-    """(x, y, w, h) of every vertex with the relations of a tiling kept but its walls let
-    go: `relations` (u, v, 'left' | 'below'): u lies left of (below) v, a wall apart or more;
-    `doors[(u, v)]`: u and v, related as in `relations`, share a wall at least that long.
-    Sides stay within `bounds` (w_lo, w_hi, h_lo, h_hi) and are pulled to `targets`; the
-    gaps that open are kept small (few voids). None: no such geometry."""
-    model = _quiet_model("relaxed tiling", seed, seconds, 1)
-    index = {v: i for i, v in enumerate(vertices)}
-    x, y, w, h = {}, {}, {}, {}
-    width = model.addVar(lb=0.0, name="width")
-    height = model.addVar(lb=0.0, name="height")
-    if outline is not None:
-        model.addCons(width <= outline[0])
-        model.addCons(height <= outline[1])
-    objective = 0.05 * (width + height)
-    for v in vertices:
-        i = index[v]
-        w_lo, w_hi, h_lo, h_hi = bounds[v]
-        x[v] = model.addVar(lb=0.0, name=f"x{i}")
-        y[v] = model.addVar(lb=0.0, name=f"y{i}")
-        w[v] = model.addVar(lb=w_lo, ub=w_hi, name=f"w{i}")
-        h[v] = model.addVar(lb=h_lo, ub=h_hi, name=f"h{i}")
-        model.addCons(x[v] + w[v] <= width)
-        model.addCons(y[v] + h[v] <= height)
-        for side, target in ((w[v], targets[v][0]), (h[v], targets[v][1])):
-            over = model.addVar(lb=0.0, name=f"o{i}")
-            under = model.addVar(lb=0.0, name=f"u{i}")
-            model.addCons(side - target == over - under)
-            objective += over + under
-    for u, v, relation in relations:
-        need = doors.get((u, v))
-        if relation == "left":
-            if need is None:
-                model.addCons(x[u] + w[u] + wall <= x[v])
-            else:
-                model.addCons(x[u] + w[u] + wall == x[v])
-                model.addCons(y[u] + h[u] - y[v] >= need)
-                model.addCons(y[v] + h[v] - y[u] >= need)
-        else:
-            if need is None:
-                model.addCons(y[u] + h[u] + wall <= y[v])
-            else:
-                model.addCons(y[u] + h[u] + wall == y[v])
-                model.addCons(x[u] + w[u] - x[v] >= need)
-                model.addCons(x[v] + w[v] - x[u] >= need)
-    model.setObjective(objective, "minimize")
-    with native_output_silenced():
-        model.optimize()
-    if model.getNSols() == 0:
-        return None
-    solution = model.getBestSol()
+    x, y, w, h = boxes
     return {v: (solution[x[v]], solution[y[v]], solution[w[v]], solution[h[v]]) for v in vertices}
 
 
@@ -467,13 +400,7 @@ def _drawing(vertices, kept, doors, targets, bounds, wall, outline, seed, second
             model.addCons(along[u] + size[u] + gap == along[v])
             model.addCons(across[u] + span[u] - across[v] >= need)
             model.addCons(across[v] + span[v] - across[u] >= need)
-    model.setObjective(objective, "minimize")
-    with native_output_silenced():
-        model.optimize()
-    if model.getNSols() == 0:
-        return None
-    solution = model.getBestSol()
-    return {v: (solution[x[v]], solution[y[v]], solution[w[v]], solution[h[v]]) for v in vertices}
+    return _solved(model, objective, vertices, (x, y, w, h))
 
 
 COMPACTNESS = 0.05
@@ -481,9 +408,6 @@ COMPACTNESS = 0.05
 
 GAP_WEIGHT = 0.2
 """Objective per metre between two neighbours of the labeling that share no door."""
-
-
-
 
 
 from collections.abc import Hashable
@@ -939,38 +863,6 @@ def dual_geometry(spec: Spec, sides: dict[str, tuple[float, float]], seed: int,
     doors = {frozenset((adj.a, adj.b)): adj.door / utilization for adj in spec.adjacencies}
     return sized_drawing(vertices, labeling, POLES, doors, targets, bounds, placed, spec.settings.walldim,
                          outline=outline, seed=seed, seconds=seconds)
-
-
-def _relaxed(spec: Spec, tiled: dict[str, Rect], targets: dict, outline: tuple[float, float] | None,
-             seed: int, seconds: float) -> dict[str, Rect] | None:
-    """The tiling with its relations kept and its rooms brought within their bounds: walls
-    between rooms without a door may come apart (step 5)."""
-    ids = [room.id for room in spec.rooms]
-    relations = []
-    for i, a in enumerate(ids):
-        ax, ay, aw, ah = tiled[a]
-        for b in ids[i + 1:]:
-            bx, by, bw, bh = tiled[b]
-            sep_x = max(bx - (ax + aw), ax - (bx + bw))
-            sep_y = max(by - (ay + ah), ay - (by + bh))
-            if sep_x >= sep_y:
-                relations.append((a, b, "left") if ax < bx else (b, a, "left"))
-            else:
-                relations.append((a, b, "below") if ay < by else (b, a, "below"))
-    utilization = spec.settings.door_utilization
-    needs = {frozenset((adj.a, adj.b)): adj.door / utilization for adj in spec.adjacencies}
-    doors = {(u, v): needs[frozenset((u, v))] for u, v, _ in relations if frozenset((u, v)) in needs}
-    bounds = {}
-    for room in spec.rooms:
-        sizes = RoomSizes.of(room)
-        long_x = targets[room.id][0] >= targets[room.id][1]
-        if long_x:
-            bounds[room.id] = (sizes.lo_long, sizes.hi_long, sizes.lo_short, sizes.hi_short)
-        else:
-            bounds[room.id] = (sizes.lo_short, sizes.hi_short, sizes.lo_long, sizes.hi_long)
-    return relaxed_tiling(ids, relations, doors, {v: targets[v] for v in ids}, bounds, spec.settings.walldim,
-                          outline=outline, seed=seed, seconds=seconds)
-
 
 
 def _spec_of(path: Path) -> Spec:
