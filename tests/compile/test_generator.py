@@ -127,18 +127,6 @@ def test_a_too_tight_boundary_grows_when_allowed_and_says_so():
     assert result.layout.solve.grown_boundary == (result.layout.width, result.layout.height)
 
 
-def _gap_and_shortfall(a, b, walldim: float, need: float) -> float:
-    """Independent measure of how far a door is from met: the best over the two axes of
-    |gap - wall| plus the shared wall it lacks."""
-    ax, ay, aw, ah = a
-    bx, by, bw, bh = b
-    gap_x = max(bx - ax - aw, ax - bx - bw)
-    gap_y = max(by - ay - ah, ay - by - bh)
-    overlap_x = min(ax + aw, bx + bw) - max(ax, bx)
-    overlap_y = min(ay + ah, by + bh) - max(ay, by)
-    return min(abs(gap_x - walldim) + max(0.0, need - overlap_y), abs(gap_y - walldim) + max(0.0, need - overlap_x))
-
-
 def test_a_graph_rectangles_cannot_draw_reports_the_doors_left_unmet():
     # four offices joined pairwise, none allowed an L (compile stops at E908 before the
     # generator; the generator alone searches and says which doors it could not close)
