@@ -3,6 +3,7 @@
     python bench/sample.py                      # realism + novelty, 1,000 samples (about a minute)
     python bench/sample.py -n 200 --seed 3      # smaller, another seed
     python bench/sample.py --compile 50         # also compile 50 specs of the shipped model
+    python bench/sample.py --compile 200 --first-layout --skip-realism   # only success and time to a layout
 
 Realism (issue 41): the 24 real plans sorted by file name are split alternately, plans 1, 3,
 5, ... to train (the grammar and the size model are fitted on them alone) and plans 2, 4, 6,
@@ -21,8 +22,10 @@ for the real test plans (how similar a real plan is to the nearest other real pl
 
 Compile (`--compile K`): the first K specs of `layoutdsl sample --like any` from the
 shipped model, each through `layoutdsl compile --time-limit 60` in turn; how many give a
-verified layout, and the first-layout times read from the layout JSON. Timings depend on the
-machine's load: the report says so.
+verified layout, and the first-layout times read from the layout JSON. With `--first-layout`
+each compile (in a process of its own) stops at its first verified layout, as a dataset's
+buildings do, instead of searching on for the rest of the minute. Timings depend on the
+machine's load.
 """
 
 from __future__ import annotations
@@ -155,10 +158,30 @@ def novelty_lines(samples: list[nx.Graph], train: list[nx.Graph], test: list[nx.
     ]
 
 
+def _first_layout(text: str, name: str, time_limit: float) -> dict:
+    """Lint a sampled spec's text and compile it as `layoutdsl compile` does, stopping at
+    its first verified layout (the generator's, polished; no whole-model search after)."""
+    from layoutdsl.api import lint_source
+    from layoutdsl.compile import compile_spec
+    from layoutdsl.diagnostics import has_errors
+    from layoutdsl.diagnostics.source import Source
+    from layoutdsl.solve import SolveOptions
+
+    spec, diagnostics = lint_source(Source(f"{name}.lay", text))
+    if spec is None or has_errors(diagnostics):
+        return {"ok": False, "why": "lint"}
+    result = compile_spec(spec, SolveOptions(time_limit=time_limit, seed=0, quiet=True, search=False))
+    if result.layout is None:
+        return {"ok": False, "why": " ".join(d.code for d in result.diagnostics)}
+    return {"ok": True, "first": result.layout.solve.first_feasible_seconds}
+
+
 def compile_snapshot(count: int, seed: int, time_limit: float, drawn: bool = True,
                      first_layout: bool = False) -> list[str]:
     """Compile the first `count` samples of the shipped model, one after the other
-    (`first_layout`: each stops at its first verified layout, as a dataset's do)."""
+    (`first_layout`: each stops at its first verified layout, in a process of its own)."""
+    from layoutdsl.devtools.isolation import run_isolated
+
     layoutdsl = Path(sys.executable).parent / "layoutdsl"
     sampler = SpecSampler(load_grammar(), "any", seed=seed, drawn_sizes=drawn)
     rows, firsts, ok = [], [], 0
@@ -168,24 +191,31 @@ def compile_snapshot(count: int, seed: int, time_limit: float, drawn: bool = Tru
             spec = Path(folder) / f"{sample.name}.lay"
             spec.write_text(sample.text)
             began = time.monotonic()
-            process = subprocess.run(
-                [str(layoutdsl), "compile", str(spec), "-o", folder, "--time-limit", f"{time_limit:g}", "--emit", "xml",
-                 "-q", *(["--variants", "1"] if first_layout else [])],
-                capture_output=True, text=True, timeout=3 * time_limit + 120)
-            seconds = time.monotonic() - began
-            layout_file = Path(folder) / f"{sample.name}{'-v1' if first_layout else ''}.layout.json"
             first = None
-            if process.returncode == 0 and layout_file.exists():
+            if first_layout:
+                outcome = run_isolated(_first_layout, sample.text, sample.name, time_limit, limit=time_limit + 60)
+                compiled = bool(outcome.get("ok"))
+                verdict = "yes" if compiled else f"no ({outcome.get('why') or outcome.get('status')})"
+                first = outcome.get("first")
+            else:
+                process = subprocess.run(
+                    [str(layoutdsl), "compile", str(spec), "-o", folder, "--time-limit", f"{time_limit:g}",
+                     "--emit", "xml", "-q"], capture_output=True, text=True, timeout=3 * time_limit + 120)
+                layout_file = Path(folder) / f"{sample.name}.layout.json"
+                compiled = process.returncode == 0 and layout_file.exists()
+                verdict = "yes" if compiled else f"no (exit {process.returncode})"
+                if compiled:
+                    first = json.loads(layout_file.read_text())["solve"].get("first_feasible_seconds")
+            seconds = time.monotonic() - began
+            if compiled:
                 ok += 1
-                first = json.loads(layout_file.read_text())["solve"].get("first_feasible_seconds")
                 if first is not None:
                     firsts.append(first)
             row = (f"{sample.name:9s} {sample.graph.graph['template'][:34]:34s} {sample.graph.number_of_nodes():5d} "
-                   f"{'yes' if process.returncode == 0 else 'no (exit %d)' % process.returncode:>11s} "
-                   f"{'-' if first is None else f'{first:.2f}':>9s} {seconds:8.1f}")
+                   f"{verdict[:24]:>24s} {'-' if first is None else f'{first:.2f}':>9s} {seconds:8.1f}")
             rows.append(row)
             print(row, file=sys.stderr, flush=True)
-    lines = [f"{'sample':9s} {'template':34s} {'rooms':>5s} {'compiles':>11s} {'first (s)':>9s} {'wall (s)':>8s}", *rows]
+    lines = [f"{'sample':9s} {'template':34s} {'rooms':>5s} {'compiles':>24s} {'first (s)':>9s} {'wall (s)':>8s}", *rows]
     lines.append(f"verified layouts: {ok} of {count} ({100 * ok / count:.0f} %) within --time-limit {time_limit:g}")
     if firsts:
         lines.append(f"first layout: median {statistics.median(firsts):.2f} s, "
@@ -209,7 +239,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--compile", type=int, default=0, metavar="K", help="also compile K specs of the shipped model")
     parser.add_argument("--time-limit", type=float, default=60.0, help="per compile (default 60)")
     parser.add_argument("--first-layout", action="store_true",
-                        help="--compile: each compile stops at its first verified layout (`--variants 1`)")
+                        help="--compile: each compile stops at its first verified layout (no whole-model search)")
     parser.add_argument("--typical-sizes", action="store_true",
                         help="give sampled rooms each label's typical sizes instead of drawn ones")
     parser.add_argument("--skip-realism", action="store_true", help="only the compile snapshot")
@@ -249,8 +279,8 @@ def main(argv: list[str] | None = None) -> int:
     if args.compile:
         lines += ["", f"compile snapshot at commit {git_commit()}: the first {args.compile} specs of "
                   f"`layoutdsl sample --like any --seed {args.seed}{' --typical-sizes' if args.typical_sizes else ''}` "
-                  f"(shipped model, {sizing}), each `layoutdsl compile --time-limit {args.time_limit:g}"
-                  f"{' --variants 1' if args.first_layout else ''}`, one at a time:"]
+                  f"(shipped model, {sizing}), each `layoutdsl compile --time-limit {args.time_limit:g}`"
+                  f"{' stopped at its first verified layout' if args.first_layout else ''}, one at a time:"]
         lines += compile_snapshot(args.compile, args.seed, args.time_limit, drawn=not args.typical_sizes,
                                   first_layout=args.first_layout)
     report = "\n".join(lines) + "\n"
