@@ -72,13 +72,14 @@ def fill(rects) -> float:
     return sum(r[2] * r[3] for r in rects) / max((x1 - x0) * (y1 - y0), 1e-9)
 
 
-def import_original(path: Path):
-    """(spec without hints, original room area, original fill, original centres)."""
+def import_original(path: Path, hints: bool = False):
+    """(spec without hints (with them: `import --keep-arrangement`), original room area,
+    original fill, original centres)."""
     from layoutdsl.evaluate.difference import building_centres
     from layoutdsl.importer import import_building, read_building
-    from layoutdsl.importer.convert import original_room_area
+    from layoutdsl.importer.convert import ImportOptions, original_room_area
 
-    spec, diagnostics = import_building(path)
+    spec, diagnostics = import_building(path, ImportOptions(hints=hints))
     if spec is None:
         raise ValueError("import failed: " + "; ".join(d.message for d in diagnostics if d.is_error))
     building, _ = read_building(path)
@@ -206,17 +207,18 @@ RENAME_SEED = 100
 """--renamed draws plan seed S's names and order from RENAME_SEED + S."""
 
 
-def _compile_plan(path: str, time_limit: float, seed: int, rename: bool = False) -> dict:
+def _compile_plan(path: str, time_limit: float, seed: int, rename: bool = False, search: bool = True,
+                  hints: bool = False) -> dict:
     from layoutdsl.compile import compile_spec
     from layoutdsl.solve import SolveOptions
 
-    spec, area, original_fill, centres = import_original(Path(path))
+    spec, area, original_fill, centres = import_original(Path(path), hints)
     if rename:
         spec, centres = renamed(spec, centres, RENAME_SEED + seed)
     row = {"rooms": len(spec.rooms), "cycles": cycle_rank(spec_graph(spec)),
            "original_void_share": original_void_share(Path(path))}
     began = time.monotonic()
-    result = compile_spec(spec, SolveOptions(time_limit=time_limit, seed=seed, quiet=True),
+    result = compile_spec(spec, SolveOptions(time_limit=time_limit, seed=seed, quiet=True, search=search),
                           explain_infeasible=False)
     row["seconds"] = round(time.monotonic() - began, 3)
     row["status"] = result.status
@@ -497,8 +499,11 @@ def main(argv: list[str] | None = None) -> int:
                         help="compile the room graphs (*.csv, *.json, *.graphml) of DIR instead of the plans")
     parser.add_argument("--kind", default="school", help="--graphs: the size model's building kind (default school)")
     parser.add_argument("--first-layout", action="store_true",
-                        help="--graphs: stop each compile at its polished first layout (no search after it), "
-                             "so a run measures success and time to a verified layout, not a minute of search")
+                        help="stop each compile at its polished first layout (no search after it), so a run "
+                             "measures success and time to a verified layout, not a minute of search")
+    parser.add_argument("--keep-arrangement", action="store_true",
+                        help="plans: import each with its original arrangement as hints "
+                             "(`layoutdsl import --keep-arrangement`)")
     parser.add_argument("--json", action="store_true", help="print JSON rows instead of the table")
     parser.add_argument("--out", type=Path, help="also write the table (or JSON) to this file")
     args = parser.parse_args(argv)
@@ -558,7 +563,7 @@ def main(argv: list[str] | None = None) -> int:
                 row = {"plan": (path.stem if args.seeds <= 1 else f"{path.stem} s{seed}")
                        + (" renamed" if args.renamed else "")}
                 row.update(isolated(_compile_plan, str(path), args.time_limit, seed, args.renamed,
-                                    limit=args.time_limit))
+                                    not args.first_layout, args.keep_arrangement, limit=args.time_limit))
                 plan_rows.append(row)
                 emit(json.dumps(row) if args.json else format_row(row))
             rows += plan_rows
