@@ -257,10 +257,7 @@ def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: i
     # and a door in two such triangles has both ends of its wall pinned (measured on the
     # 80 room graphs of shared/graphs, bench/results/generation-graphs.txt: 10 of the 13 the
     # generator does not draw have two triangles of doors sharing a door, 18 of the 67 it draws)
-    doors: dict[str, set[str]] = {}
-    for adj in spec.adjacencies:
-        doors.setdefault(adj.a, set()).add(adj.b)
-        doors.setdefault(adj.b, set()).add(adj.a)
+    doors = spec.door_neighbours()
     for x, y, metres in unmet[:UNMET_SHOWN]:
         x, y = x.removesuffix(ARM_SUFFIX), y.removesuffix(ARM_SUFFIX)
         third = sorted(doors.get(x, set()) & doors.get(y, set()))

@@ -865,7 +865,7 @@ def repair(
     """
     options = _first_options(problem, geometry, free_defects)
     start: _Outcome | None = None
-    neighbours = _adjacency_neighbours(problem.spec)
+    neighbours = problem.spec.door_neighbours()
     best_total = math.inf
     stalls = 0
     orientations = {
@@ -961,15 +961,6 @@ def _first_options(problem: _Problem, geometry: dict[str, Rect],
             if distance < problem.walldim - 1e-6 or (wall and distance > problem.walldim + 1e-3):
                 options[pair] = _widen(problem, geometry, pair, options[pair])
     return options
-
-
-def _adjacency_neighbours(spec: Spec) -> dict[str, set[str]]:
-    """Room id -> the rooms it shares a door with."""
-    neighbours: dict[str, set[str]] = {}
-    for adj in spec.adjacencies:
-        neighbours.setdefault(adj.a, set()).add(adj.b)
-        neighbours.setdefault(adj.b, set()).add(adj.a)
-    return neighbours
 
 
 def _final_layout(problem: _Problem, geometry: dict[str, Rect], outcome: _Outcome,

@@ -324,6 +324,14 @@ class Spec:
     def room_ids(self) -> tuple[str, ...]:
         return tuple(room.id for room in self.rooms)
 
+    def door_neighbours(self) -> dict[str, set[str]]:
+        """Room id -> the rooms it shares a door with (rooms without a door left out)."""
+        neighbours: dict[str, set[str]] = {}
+        for adj in self.adjacencies:
+            neighbours.setdefault(adj.a, set()).add(adj.b)
+            neighbours.setdefault(adj.b, set()).add(adj.a)
+        return neighbours
+
     def restricted_to(self, keep, name: str) -> Spec:
         """The spec of some rooms alone: those rooms, in the same boundary, with every
         constraint among them only (the sub-problems of cycle decomposition and generation)."""
