@@ -319,7 +319,7 @@ class Rooms:
         pack_state(p, q, turned, long_side, short_side, self.bounds, self.wall, self.door_ptr, self.door_to, work)
         per_edge = np.zeros(self.edge_a.shape[0])
         cost_violation(work, self.edge_a, self.edge_b, self.need, self.group_end, self.on_boundary, self.width,
-                  self.height, self.wall, self.outline_given, per_edge)
+                       self.height, self.wall, self.outline_given, per_edge)
         unmet, start = [], 0
         for g, end in enumerate(self.group_end):
             metres = float(per_edge[start:end].min())
