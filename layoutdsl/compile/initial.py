@@ -20,6 +20,7 @@ import math
 import networkx as nx
 import numpy as np
 
+from layoutdsl.compile.graph import room_graph
 from layoutdsl.compile.representation import Rooms, State
 from layoutdsl.layout.geometry import Rect, RoomSizes
 from layoutdsl.syntax.ast import ARM_SUFFIX, Spec, arm_id
@@ -34,14 +35,6 @@ MAX_SHRINK = 0.92
 
 SPRING_ITERATIONS = 60
 """Iterations of the spring embedding (networkx's default is 50)."""
-
-
-def room_graph(spec: Spec) -> nx.Graph:
-    """The spec's rooms as nodes (in the spec's order), its adjacencies as edges."""
-    graph = nx.Graph()
-    graph.add_nodes_from(room.id for room in spec.rooms)
-    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
-    return graph
 
 
 def _neighbours(spec: Spec) -> dict[str, list[str]]:

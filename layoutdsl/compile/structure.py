@@ -26,19 +26,12 @@ from itertools import combinations
 import networkx as nx
 
 from layoutdsl.compile.explain import E908
+from layoutdsl.compile.graph import room_graph
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.diagnostics.source import Span
 from layoutdsl.syntax.ast import Arm, Room, Spec
 
 _FALLBACK_SPAN = Span(1, 1, 1, 2)
-
-
-def room_graph(spec: Spec) -> nx.Graph:
-    """The spec's rooms as nodes (in the spec's order), its adjacencies as edges."""
-    graph = nx.Graph()
-    graph.add_nodes_from(room.id for room in spec.rooms)
-    graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
-    return graph
 
 
 BOX_SHARE = 0.7
