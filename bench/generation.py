@@ -40,7 +40,11 @@ with the typical sizes of `--kind`, the boundary chosen by the tool), one row a 
 cycles, whether it holds four pairwise joined rooms (K4), verified, first layout and total
 seconds, room area / the rooms' target area, and the realism columns; then a summary line.
 
-    python bench/generation.py --graphs ../shared/graphs [--time-limit 60] [--only PATTERN]
+    python bench/generation.py --graphs ../shared/graphs [--time-limit 60] [--only PATTERN] [--seeds N]
+
+With `--seeds N` each graph is compiled at seeds SEED..SEED+N-1, as plans are: on the hard
+graphs one seed draws a graph and the next does not, so a change to the generator is judged
+on several seeds a graph, not one.
 """
 
 from __future__ import annotations
@@ -523,11 +527,16 @@ def main(argv: list[str] | None = None) -> int:
         if not args.json:
             emit(header(GRAPH_COLUMNS))
         for path in files:
-            row = {"plan": path.stem}
-            row.update(isolated(_compile_graph, str(path), args.time_limit, args.seed, args.kind,
-                                not args.first_layout, limit=args.time_limit))
-            rows.append(row)
-            emit(json.dumps(row) if args.json else format_row(row, GRAPH_COLUMNS))
+            graph_rows = []
+            for seed in range(args.seed, args.seed + max(1, args.seeds)):
+                row = {"plan": path.stem if args.seeds <= 1 else f"{path.stem} s{seed}"}
+                row.update(isolated(_compile_graph, str(path), args.time_limit, seed, args.kind,
+                                    not args.first_layout, limit=args.time_limit))
+                graph_rows.append(row)
+                emit(json.dumps(row) if args.json else format_row(row, GRAPH_COLUMNS))
+            rows += graph_rows
+            if args.seeds > 1 and not args.json:
+                emit(f"  {path.stem}: {first_layouts(graph_rows)}")
         if not args.json:
             emit(f"{first_layouts(rows)}\n{realism_summary(rows)}")
     elif args.variants:
