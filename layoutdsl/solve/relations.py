@@ -31,6 +31,7 @@ from collections.abc import Callable
 
 from layoutdsl.layout import lshape
 from layoutdsl.layout.geometry import SIDES, Rect, RoomSizes, layout_from_rects, separations
+from layoutdsl.solve.quiet import native_output_silenced
 from layoutdsl.syntax.ast import Room, Spec
 
 
@@ -426,8 +427,10 @@ def _solve_active(
                            "minimize")
     if start is not None:
         _add_start(model, start, options)
-    # without the GIL: the generator's annealing chains may run beside it
-    model.optimizeNogil()
+    # without the GIL: the generator's annealing chains may run beside it; SoPlex's warnings
+    # (written from C) stay off the terminal for every caller, not only compile's
+    with native_output_silenced():
+        model.optimizeNogil()
     status = model.getStatus()
     _debug(f"    {mode} model: {status} in "
            f"{model.getSolvingTime():.2f}s, {model.getNTotalNodes()} nodes, {model.getNLPIterations()} LP "

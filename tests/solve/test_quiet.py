@@ -97,3 +97,33 @@ def test_a_stream_kept_from_inside_the_silence_still_writes_afterwards(capfd):
     os.write(2, b"")  # the descriptor is back
     print("after the silence", file=kept)
     assert "after the silence" in capfd.readouterr().err
+
+
+class _ChattyModel:
+    """A SCIP model whose solve first writes from C to fds 1 and 2, as SoPlex's warnings do."""
+
+    def __init__(self, model):
+        self._model = model
+
+    def optimizeNogil(self):  # noqa: N802  (pyscipopt's name)
+        os.write(2, b"chatter from the LP solver\n")
+        _c_printf("buffered chatter from the LP solver\n")
+        return self._model.optimizeNogil()
+
+    def __getattr__(self, name):
+        return getattr(self._model, name)
+
+
+def test_the_generator_called_directly_keeps_the_solver_off_the_terminal(capfd, monkeypatch):
+    """A library user calling compile.generator.generate (no compile around it) sees none of
+    what the sizing stage's SCIP writes from C."""
+    from layoutdsl.compile.generator import generate
+    from layoutdsl.solve import relations
+    from tests.compile._specs import tree_spec
+
+    real = relations._scip_model
+    monkeypatch.setattr(relations, "_scip_model", lambda *args: _ChattyModel(real(*args)))
+    generated = generate(tree_spec(), seed=0)
+    assert generated.rects is not None
+    out, err = capfd.readouterr()
+    assert "chatter" not in out + err
