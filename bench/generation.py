@@ -477,6 +477,22 @@ def format_variants(plan: str, result: dict) -> str:
     return "\n".join(lines)
 
 
+def over_seeds(stem: str, args, emit, columns, compile_seed, suffix: str = "") -> list[dict]:
+    """The rows of one plan or graph at seeds args.seed .. args.seed + args.seeds - 1, each
+    emitted as it comes (named `STEM sN` when there are several seeds, then `suffix`),
+    followed by a line for the plan over its seeds; `compile_seed(seed)` gives a row's
+    columns."""
+    rows = []
+    for seed in range(args.seed, args.seed + max(1, args.seeds)):
+        row = {"plan": (stem if args.seeds <= 1 else f"{stem} s{seed}") + suffix}
+        row.update(compile_seed(seed))
+        rows.append(row)
+        emit(json.dumps(row) if args.json else format_row(row, columns))
+    if args.seeds > 1 and not args.json:
+        emit(f"  {stem}: {first_layouts(rows)}")
+    return rows
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -527,16 +543,9 @@ def main(argv: list[str] | None = None) -> int:
         if not args.json:
             emit(header(GRAPH_COLUMNS))
         for path in files:
-            graph_rows = []
-            for seed in range(args.seed, args.seed + max(1, args.seeds)):
-                row = {"plan": path.stem if args.seeds <= 1 else f"{path.stem} s{seed}"}
-                row.update(isolated(_compile_graph, str(path), args.time_limit, seed, args.kind,
-                                    not args.first_layout, limit=args.time_limit))
-                graph_rows.append(row)
-                emit(json.dumps(row) if args.json else format_row(row, GRAPH_COLUMNS))
-            rows += graph_rows
-            if args.seeds > 1 and not args.json:
-                emit(f"  {path.stem}: {first_layouts(graph_rows)}")
+            rows += over_seeds(path.stem, args, emit, GRAPH_COLUMNS, lambda seed: isolated(
+                _compile_graph, str(path), args.time_limit, seed, args.kind, not args.first_layout,
+                limit=args.time_limit))
         if not args.json:
             emit(f"{first_layouts(rows)}\n{realism_summary(rows)}")
     elif args.variants:
@@ -563,17 +572,9 @@ def main(argv: list[str] | None = None) -> int:
         if not args.json:
             emit(header())
         for path in plan_files(args.folder, args.only):
-            plan_rows = []
-            for seed in range(args.seed, args.seed + max(1, args.seeds)):
-                row = {"plan": (path.stem if args.seeds <= 1 else f"{path.stem} s{seed}")
-                       + (" renamed" if args.renamed else "")}
-                row.update(isolated(_compile_plan, str(path), args.time_limit, seed, args.renamed,
-                                    not args.first_layout, args.keep_arrangement, limit=args.time_limit))
-                plan_rows.append(row)
-                emit(json.dumps(row) if args.json else format_row(row))
-            rows += plan_rows
-            if args.seeds > 1 and not args.json:
-                emit(f"  {path.stem}: {first_layouts(plan_rows)}")
+            rows += over_seeds(path.stem, args, emit, COLUMNS, lambda seed: isolated(
+                _compile_plan, str(path), args.time_limit, seed, args.renamed, not args.first_layout,
+                args.keep_arrangement, limit=args.time_limit), suffix=" renamed" if args.renamed else "")
         if not args.json:
             emit(summary(rows))
     if args.out:
