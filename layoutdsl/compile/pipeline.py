@@ -16,7 +16,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field, replace
 
 from layoutdsl.compile import explain, structure
-from layoutdsl.compile.budgets import LNS_SIZE, LNS_SMALL, TIME
+from layoutdsl.compile.budgets import LNS_SIZE, LNS_SMALL, TIME, WORK
 from layoutdsl.compile.generator import Generated, generate
 from layoutdsl.layout import lshape
 from layoutdsl.syntax.ast import Spec
@@ -45,6 +45,8 @@ from layoutdsl.solve import (
 from layoutdsl.layout.geometry import Rect
 from layoutdsl.layout.verify import verify
 from layoutdsl.solve.isolated import SOLVER_CRASHED, solve_isolated
+from layoutdsl.solve.relations import without_slivers
+from layoutdsl.layout.realism import USABLE_WIDTH
 
 StartProvider = Callable[[Spec, SolveOptions], "Generated | dict[str, Rect] | None"]
 """start_provider(spec, options) -> a Generated (or rectangles satisfying every hard
@@ -374,14 +376,9 @@ def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dic
     L-spec's boxes)."""
     failures = []
     best: tuple[float, Layout, str] | None = None
-    for rects, status in candidates:
-        # (5.1) with o chosen per room as the thesis' model may choose it: the best
-        # orientation that satisfies (5.4)-(5.6)
-        objective = objective_of_rects(model_spec or spec, rects, formulation=formulation)
-        # a tie (the solver's incumbent is the polished start, up to its tolerances) keeps
-        # the earlier candidate, so the layout reports the rule that stopped the solve
-        if best is not None and objective >= best[0] - 1e-6 * max(1.0, abs(best[0])):
-            continue
+    best_rects: dict[str, Rect] | None = None
+
+    def checked_layout(rects: dict[str, Rect], status: str, objective: float) -> Layout:
         # SCIP's bound is a lower bound on (5.1) over all layouts, so it bounds every candidate
         gap = relative_gap(objective, outcome.bound) if outcome.bound is not None else None
         info = SolveInfo(
@@ -397,12 +394,33 @@ def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dic
             # the search's own report; polish and neighbourhood outcomes carry the same flag
             wall_clock_limited=outcome.wall_clock_limited,
         )
-        layout = layout_from_rects(spec, rects, info)
+        return layout_from_rects(spec, rects, info)
+
+    for rects, status in candidates:
+        # (5.1) with o chosen per room as the thesis' model may choose it: the best
+        # orientation that satisfies (5.4)-(5.6)
+        objective = objective_of_rects(model_spec or spec, rects, formulation=formulation)
+        # a tie (the solver's incumbent is the polished start, up to its tolerances) keeps
+        # the earlier candidate, so the layout reports the rule that stopped the solve
+        if best is not None and objective >= best[0] - 1e-6 * max(1.0, abs(best[0])):
+            continue
+        layout = checked_layout(rects, status, objective)
         violations = verify(spec, layout)
         if violations:
             failures.append(violations)
         else:
-            best = (objective, layout, status)
+            best, best_rects = (objective, layout, status), rects
+    if best is not None and best_rects is not None and options.strategy != "thesis":
+        # a gap between two rooms is a wall or a space, never a sliver (issue 40): the
+        # best layout's relations, sized again with each sliver shut or opened
+        cleared = without_slivers(spec, best_rects, usable_width=USABLE_WIDTH, seed=options.seed,
+                                  nodes=WORK["final_nodes"],
+                                  deadline=time.monotonic() + TIME["slivers"] * options.time_limit)
+        if cleared is not None:
+            objective = objective_of_rects(model_spec or spec, cleared, formulation=formulation)
+            layout = checked_layout(cleared, best[2], objective)
+            if not verify(spec, layout):
+                best = (objective, layout, best[2])
     return best, failures
 
 

@@ -206,6 +206,24 @@ def _add_adjacent(model, a: _Box, b: _Box, direction: str, walldim: float, wall:
         model.addCons(b.x + wall - a.x - a.w <= slack)
 
 
+def _add_wall_or_space(model, problem: _Problem, boxes: dict[str, _Box], pair: Pair, direction: str,
+                       width: float):
+    """The gap between the pair (a on the `direction` side of b) is a wall exactly, or at
+    least `width`: one binary chooses, and is returned (1: opened)."""
+    a, b = pair
+    gap = -_excess(boxes[a], boxes[b], direction, 0.0)
+    space = model.addVar(f"u_{a}_{b}", vtype="B")
+    big = problem.big_m
+    model.addCons(gap <= problem.gap(pair) + SAFETY + big * space)
+    model.addCons(gap >= width + SAFETY - big * (1 - space))
+    return space
+
+
+OPEN_GAP_COST = 0.5
+"""Objective (metres of size deviation) an opened gap costs against a shut one: a space
+between rooms no door leads to is a void, so a wall is preferred when the sizes allow."""
+
+
 def _add_join(model, a: _Box, b: _Box, option: str, slack) -> None:
     """a and b form one L-shaped room (lshape.JOIN_OPTIONS): a flush on `side` of b, no
     wall between them, their edges flush at the `end` of the side they share."""
@@ -403,9 +421,11 @@ def _solve_active(
     start: _Outcome | None,
     feasibility_emphasis: bool,
     within: tuple[dict[str, Rect], float | None],
+    gaps: dict[Pair, float] | None = None,
 ) -> _Outcome | None:
     """One SCIP solve of the model with the pairs of `options`, each room within a reach of
-    its rectangle (`within`: rectangles, reach; None: anywhere); see _solve_model."""
+    its rectangle (`within`: rectangles, reach; None: anywhere); see _solve_model. `gaps`:
+    pairs whose gap must be a wall or at least the given width (`without_slivers`)."""
     repair = mode == "repair"
     from pyscipopt import quicksum
 
@@ -419,12 +439,14 @@ def _solve_active(
     _add_covered_points(model, problem.spec, rooms.boxes)
     _add_clusters(model, problem, rooms.boxes)
     pairs = _add_pair_relations(model, problem, rooms.boxes, options)
+    opened = [_add_wall_or_space(model, problem, rooms.boxes, pair, options[pair][0], width)
+              for pair, width in (gaps or {}).items()]
 
     if repair:
         model.setObjective(quicksum(pairs.penalty), "minimize")
     else:
-        model.setObjective(quicksum(rooms.deviation) + FINAL_STRETCH_COST * quicksum(pairs.penalty),
-                           "minimize")
+        model.setObjective(quicksum(rooms.deviation) + FINAL_STRETCH_COST * quicksum(pairs.penalty)
+                           + OPEN_GAP_COST * quicksum(opened), "minimize")
     if start is not None:
         _add_start(model, start, options)
     # without the GIL: the generator's annealing chains may run beside it; SoPlex's warnings
@@ -1013,6 +1035,69 @@ def _widen(problem: _Problem, geometry: dict[str, Rect], pair: Pair,
     if len(allowed) == 2:
         return allowed + tuple(d for d in DIRECTIONS if d not in allowed)
     return allowed
+
+
+# ---------------------------------------------------------------------------------------
+# Slivers: gaps between rooms that are neither wall nor space
+# ---------------------------------------------------------------------------------------
+
+SLIVER_ROUNDS = 4
+"""Solves of `without_slivers`: each adds the pairs the last one left a sliver between."""
+
+
+def without_slivers(spec: Spec, rects: dict[str, Rect], *, usable_width: float, deadline: float,
+                    nodes: int, seed: int) -> dict[str, Rect] | None:
+    """The rectangles (a layout of the spec; an L-room's box and arm by their own ids) with
+    every gap between two rooms' facing walls a wall exactly or at least `usable_width`
+    wide, the sizes as near the rectangles' own as that allows; None when the rectangles have no
+    sliver, or when the relations they hold do not allow it within SLIVER_ROUNDS solves.
+
+    Every pair keeps its relation (the LP of the final sizing); each pair that faces the
+    other across a sliver gets one binary: shut to a wall, or open to usable width. Closing
+    one sliver can open another between rooms that moved, so the pairs add up over rounds.
+    """
+    from layoutdsl.layout.realism import Space, find_slivers
+
+    problem = boxed_problem(spec, rects) if spec.arms else problem_of(spec)
+    ids = [room.id for room in problem.spec.rooms]
+    geometry = {room_id: rects[room_id] for room_id in ids}
+    # the sizes the layout has are the targets: whatever chose them (the thesis' objective,
+    # polished by SCIP) keeps its say, and rooms move and resize only as the gaps need
+    anchored = replace(problem.spec, rooms=tuple(
+        replace(room, target_w=geometry[room.id][2], target_h=geometry[room.id][3]) for room in problem.spec.rooms))
+    problem = replace(problem, spec=anchored, checked=problem.checked or spec)
+    options: dict[Pair, tuple[str, ...]] = {
+        pair: problem.axis_choices(geometry, pair)[:1] for pair in problem.pairs
+    }
+    for pair in problem.joins:
+        options[pair] = (lshape.join_option(geometry[pair[0]], geometry[pair[1]]),)
+    orientations = {room_id: rect[2] >= rect[3] for room_id, rect in geometry.items()}
+    joined = {frozenset(pair) for pair in problem.joins}
+    gaps: dict[Pair, float] = {}
+    current = geometry
+    for _ in range(SLIVER_ROUNDS + 1):
+        spaces = [Space(room_id, "", "R", ((x, y, x + w, y + h),)) for room_id, (x, y, w, h) in current.items()]
+        found = [sliver for sliver in find_slivers(spaces, problem.walldim, usable_width)
+                 if frozenset((sliver.a, sliver.b)) not in joined]
+        if not found:
+            return None if current is geometry else current
+        if len(gaps) and all(_ordered(problem, s.a, s.b) in gaps for s in found):
+            return None  # the binaries allowed it and SCIP's tolerance did not: give up
+        for sliver in found:
+            gaps[_ordered(problem, sliver.a, sliver.b)] = usable_width
+        if deadline - time.monotonic() <= 0.05:
+            return None
+        outcome = _solve_active(problem, options, mode="final", seconds=deadline - time.monotonic(),
+                                nodes=nodes, seed=seed, orientations=orientations, turnable=frozenset(),
+                                start=None, feasibility_emphasis=False, within=(current, None), gaps=gaps)
+        if outcome is None or max(outcome.stretched.values(), default=0.0) > STRETCH_NOISE_M or check_start(problem.checked or problem.spec, outcome.rects):
+            return None
+        current = outcome.rects
+    return None
+
+
+def _ordered(problem: _Problem, a: str, b: str) -> Pair:
+    return (a, b) if problem.order[a] < problem.order[b] else (b, a)
 
 
 def problem_of(spec: Spec) -> _Problem:
