@@ -25,6 +25,8 @@ from pathlib import PurePath
 
 from layoutdsl.syntax.ast import Adjacency, Arm, Boundary, Hint, Room, Settings, Spec
 from layoutdsl.importer.building import Building, Space, polygon_area
+from layoutdsl.layout.realism import Space as RealismSpace
+from layoutdsl.layout.realism import measure_spaces
 from layoutdsl.importer.lshape import LFit, fit_l
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.importer import codes
@@ -184,6 +186,7 @@ def convert(
     rooms: list[Room] = []
     arms: list[Arm] = []
     hints: list[Hint] = []
+    outside = _open_to_outside(building)
     for space in building.spaces:
         room_id = ids[space.id]
         ratio = space.rectangularization_ratio
@@ -215,7 +218,7 @@ def convert(
             _widen_for_door(sides, door_side, door, room_id, label, space, filename, diagnostics)
         room = _rounded_room(room_id, rtype, label, sides, var_plus, var_minus, options,
                              door_side if widened else None)
-        if opens_outside(rtype, label) and _on_plan_edge(space, building):
+        if opens_outside(rtype, label) and space.id in outside:
             # an entrance that opens to the outside in the original must in every layout
             # too: onB (the thesis' 5.12) makes the generator keep it on the boundary
             room = replace(room, on_boundary=True)
@@ -238,9 +241,25 @@ PLAN_EDGE_M = 0.5
 """Metres within which a space's box counts as touching the plan's bounding box."""
 
 
+def _open_to_outside(building: Building) -> set[str]:
+    """The ids of the entrances that open to the outside in the original: by the realism
+    measure (layout.realism: at least a door's width of outline on space that a 0.6 m square
+    reaches from beyond the plan, so an entrance in a recess of the outline counts, one in a
+    closed courtyard does not), or whose bounding box reaches the plan's."""
+    entrances = [space for space in building.spaces if opens_outside(space.spec_type, space.label)]
+    found = {space.id for space in entrances if _on_plan_edge(space, building)}
+    if len(found) == len(entrances):
+        return found
+    scale = building.metres_per_unit
+    spaces = [RealismSpace(space.id, space.label, space.spec_type,
+                           polygon=tuple((p.x * scale, -p.y * scale) for p in space.polygon))
+              for space in building.spaces if len(space.polygon) >= 3]
+    return found | set(measure_spaces(spaces).open_entrances) & {space.id for space in entrances}
+
+
 def _on_plan_edge(space: Space, building: Building) -> bool:
     """Whether the space's bounding box reaches the plan's (within PLAN_EDGE_M): it opens to
-    the outside there (an entrance in a courtyard does not count)."""
+    the outside there."""
     reach = PLAN_EDGE_M / building.metres_per_unit
     box = space.bbox
     return (box.min_x - min(s.bbox.min_x for s in building.spaces) <= reach

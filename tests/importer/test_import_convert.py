@@ -238,3 +238,25 @@ def test_convert_reports_buildings_built_in_code_that_the_reader_would_refuse():
     assert [d.code for d in diagnostics] == ["E405"] and spec.rooms == ()
     spec, diagnostics = convert(Building("b", 90, 0.9, ()), ImportOptions())
     assert [d.code for d in diagnostics] == ["E410"] and spec.rooms == ()
+
+
+def _entrance_on_boundary(spaces) -> bool:
+    spec, _ = _import(plan_xml(spaces))
+    (entrance,) = [room for room in spec.rooms if room.rtype == "E"]
+    return entrance.on_boundary
+
+
+def test_an_entrance_in_a_recess_of_the_outline_opens_outside_and_gets_onb():
+    # a U of rooms (1 px = 1 cm): the entrance stands 3 m back in the 4 m wide recess, its
+    # box nowhere near the plan's edge, its front on the outside
+    wings = [PlanSpace("l", "R", "ROOM", rect(0, 0, 300, 1000)), PlanSpace("r", "R", "ROOM", rect(700, 0, 300, 1000)),
+             PlanSpace("b", "R", "ROOM", rect(300, 500, 400, 500))]
+    assert _entrance_on_boundary(wings + [PlanSpace("e", "E", "ENTRANCE", rect(400, 300, 200, 200))])
+
+
+def test_an_entrance_on_a_closed_courtyard_does_not_get_onb():
+    ring = [PlanSpace("l", "R", "ROOM", rect(0, 0, 300, 1000)), PlanSpace("r", "R", "ROOM", rect(700, 0, 300, 1000)),
+            PlanSpace("t", "R", "ROOM", rect(300, 700, 400, 300)), PlanSpace("b", "R", "ROOM", rect(300, 0, 400, 300))]
+    assert not _entrance_on_boundary(ring + [PlanSpace("e", "E", "ENTRANCE", rect(400, 500, 200, 200))])
+    # the same entrance with the ring open at the top: on the outside
+    assert _entrance_on_boundary(ring[:2] + ring[3:] + [PlanSpace("e", "E", "ENTRANCE", rect(400, 500, 200, 200))])
