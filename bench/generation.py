@@ -103,9 +103,24 @@ def original_void_share(path: Path) -> float:
     return round(realism_of_building(building, room_ids(building)).void_share, 4)
 
 
+def compiled_spec(spec, layout):
+    """(the spec compile verified the layout against, the rooms compile made L-shaped): a
+    graph with four rooms joined pairwise has one of them made an L (compile.structure), and
+    a corridor the generator turned a corner has its arm in the layout."""
+    from layoutdsl.compile.shapes import with_arms
+    from layoutdsl.compile.structure import with_l_rooms
+
+    reference, made_l = with_l_rooms(spec)
+    armed = {arm.room for arm in reference.arms}
+    turned = [room.id for room in layout.rooms if len(room.parts) > 1 and room.id not in armed]
+    return with_arms(reference, turned), made_l + turned
+
+
 def _layout_row(spec, layout, area, original_fill, centres) -> dict:
     from layoutdsl.layout.difference import difference, layout_centres
     from layoutdsl.layout.verify import verify
+
+    spec, _made = compiled_spec(spec, layout)
 
     # every rectangle of every room: an L-room's arm too
     rects = [(p.x, p.y, p.w, p.h) for r in layout.rooms for p in r.parts]
@@ -367,11 +382,7 @@ def _compile_graph(path: str, time_limit: float, seed: int, kind: str, search: b
     from layoutdsl.layout.verify import drawn_boundary, verify
 
     layout = result.layout
-    # the spec compile verified against: a graph with four rooms joined pairwise has one of
-    # them made an L (compile.structure), so the layout is checked with that L
-    from layoutdsl.compile.structure import with_l_rooms
-
-    reference, made_l = with_l_rooms(checked)
+    reference, made_l = compiled_spec(checked, layout)
     row["l_rooms"] = ",".join(made_l)
     if (layout.width, layout.height) != (checked.boundary.w, checked.boundary.h):
         # the tool fitted the boundary it chose to the layout (or grew it): the row says so

@@ -8,7 +8,8 @@ The package is laid out as the design (docs/generator.md):
 - pipeline.py: the stages, from a first layout to a verified Layout;
 - budgets.py: every work limit and time share, in one table;
 - generator.py: the one generator of first layouts, built of
-  structure.py (what cannot be drawn), initial.py (the initial state), representation.py
+  structure.py (what cannot be drawn), shapes.py (how a corridor becomes an L), initial.py
+  (the initial state), representation.py
   (sequence pairs and their packing), moves.py, cost.py and schedule.py (the annealing);
   the sizing with relations fixed lives in layoutdsl.solve.relations;
 - variants.py: several different layouts of one spec; explain.py: why a spec has none.

@@ -13,13 +13,15 @@ WORK = {
     "moves_per_room": 1500,      # moves per room in a chain of the first round
     "round_growth": 2.0,         # each round's chains make this many times the moves of the last
     "max_moves": 3_000_000,      # at most this many moves a chain
-    "max_rounds": 6,             # rounds before the generator gives up
+    "max_rounds": 8,             # rounds before the generator gives up (the last after a turn)
     "chains": 2,                 # chains side by side in a round (one per core measured on)
     "start_temperature": 0.02,   # x (outline width + height): metres of cost at the first move
     "end_temperature": 0.0001,   # ... at the last move
     "zero_stop": 0.3,            # a chain at violation 0 stops after this share of its moves
     "give_up_at": 0.6,           # a chain still more than give_up_m from a layout at this
     "give_up_m": 5.0,            #   share of its moves stops there
+    "turn_after_rounds": (3,),   # after these rounds (0-based) a corridor of each unmet corridor-corridor
+                                 #   door turns a corner (shapes.with_turns)
     # the sizing stage (layoutdsl.solve.relations): a round's MIP stops after this many nodes
     "repair_round_nodes": 200,
     "hint_round_nodes": 5000,    # ... a round's MIP on the original plan's boxes (worth a long repair)

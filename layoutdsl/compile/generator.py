@@ -1,6 +1,6 @@
 """The generator: one way from a checked spec to a first layout that passes verification.
 
-    structure    -> can the room graph be drawn at all?          (structure.py)
+    structure    -> can the room graph be drawn at all?          (structure.py, shapes.py)
     hints        -> the original plan's boxes, when the spec keeps its arrangement
     initial      -> a sequence pair read off the room graph      (initial.py)
     schedule     -> annealing: moves, one cost, work limits      (schedule.py, moves.py, cost.py)
@@ -12,7 +12,10 @@ the original boxes first. Otherwise, and when that fails, each round of the sche
 CHAINS sequence-pair states from new spring embeddings of the room graph, with more moves
 than the round before; its best state, when within `repair_max_violation_m` of a layout, is
 packed and handed to the sizing stage, whose relation model meets every door exactly, keeps
-every other pair a wall apart and brings the sizes near their targets. The first rectangles
+every other pair a wall apart and brings the sizes near their targets. After the rounds of
+WORK["turn_after_rounds"], a corridor-like room of each door between two of them that the
+best state still leaves unmet turns a corner (shapes.with_turns): each becomes an L, split where it lies, and the rounds
+go on from there. The first rectangles
 that pass `check_start` are the answer. Every limit is work (budgets.WORK); the deadline
 only cuts a compile off, and the result then says so (`cut_off`).
 
@@ -28,7 +31,7 @@ import random
 import time
 from dataclasses import dataclass, replace
 
-from layoutdsl.compile import initial, schedule
+from layoutdsl.compile import initial, schedule, shapes
 from layoutdsl.compile.budgets import WORK
 from layoutdsl.compile.representation import Rooms
 from layoutdsl.layout import lshape
@@ -69,6 +72,9 @@ class Generated:
     unmet: tuple[tuple[str, str, float], ...] = ()
     """Without rectangles: the doors the closest annealed arrangement left unmet, (room,
     room, metres) worst first; they say where the room graph is hard to draw."""
+    turned: tuple[str, ...] = ()
+    """Corridor-like rooms the generator made L-shaped (shapes.with_turns): `spec` has
+    their arms."""
 
 
 def generate(spec: Spec, *, seed: int = 0, deadline: float | None = None, use_hints: bool = True,
@@ -120,46 +126,76 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
     assert boundary is not None
     outline = (boundary.w, boundary.h)
     soft = grow_boundary or boundary.chosen
-    sides = initial.drawn_sides(drawn, outline, shrink=1.0 if soft else None)
-    rooms = Rooms.of(drawn, sides, outline, outline_given=not soft)
-
+    # what the rounds search: the spec, its drawn spec (an L's arm a room) and their rooms;
+    # a corridor that turns a corner (shapes.with_turns) changes all three
+    current = _Searched.of(spec, drawn, outline, soft)
     best: list = []
+    carried: list = []
 
     def starts(round_index: int, chain: int):
         # the first chain of a later round goes on from the best state so far (longer, so
-        # it can leave its local minimum); the others start from new embeddings
+        # it can leave its local minimum), or from the state its corridors turned in; the
+        # others start from new embeddings
         if chain == 0 and best:
             return best[0].state
-        return initial.initial_state(drawn, rooms, _embedding_seed(seed, round_index, chain))
+        if chain == 0 and carried:
+            return carried[0]
+        return initial.initial_state(current.drawn, current.rooms, _embedding_seed(seed, round_index, chain))
 
     done_rounds = moves = 0
+    turned: list[str] = []
 
-    def unmet() -> tuple[tuple[str, str, float], ...]:
-        return tuple(rooms.unmet_doors(best[0].state)) if best else ()
+    def ended(cut_off: bool = False) -> Generated:
+        unmet = tuple(current.rooms.unmet_doors(best[0].state)) if best else ()
+        return Generated(None, current.spec, "", done_rounds, moves, cut_off=cut_off, unmet=unmet,
+                         turned=tuple(turned))
 
-    for found in schedule.rounds(rooms, starts, seed, limits.deadline, max_rounds):
+    for found in schedule.rounds(lambda _round: current.rooms, starts, seed, limits.deadline, max_rounds):
         if found is None:
-            return Generated(None, spec, "", done_rounds, moves, cut_off=True, unmet=unmet())
+            return ended(cut_off=True)
         done_rounds += 1
         moves += found.moves
         if not best or (found.violation, found.cost) < (best[0].violation, best[0].cost):
             best[:] = [found]
-        if found.violation > WORK["repair_max_violation_m"]:
-            continue
-        geometry = rooms.geometry(found.state)
-        target = spec
-        if soft:
-            target = _drawn_round(spec, geometry)
-        rects = _sized(target, geometry, rng, seed, limits)
-        if rects is not None:
-            grown = None
-            if target.boundary is not None and (target.boundary.w > boundary.w + 1e-9
-                                                or target.boundary.h > boundary.h + 1e-9):
-                grown = (target.boundary.w, target.boundary.h)
-            return Generated(rects, target, "annealed", done_rounds, moves, grown=grown)
-        if time.monotonic() >= limits.deadline:
-            return Generated(None, spec, "", done_rounds, moves, cut_off=True, unmet=unmet())
-    return Generated(None, spec, "", done_rounds, moves, unmet=unmet())
+        if found.violation <= WORK["repair_max_violation_m"]:
+            geometry = current.rooms.geometry(found.state)
+            target = _drawn_round(current.spec, geometry) if soft else current.spec
+            rects = _sized(target, geometry, rng, seed, limits)
+            if rects is not None:
+                grown = None
+                if target.boundary is not None and (target.boundary.w > boundary.w + 1e-9
+                                                    or target.boundary.h > boundary.h + 1e-9):
+                    grown = (target.boundary.w, target.boundary.h)
+                return Generated(rects, target, "annealed", done_rounds, moves, grown=grown,
+                                 turned=tuple(turned))
+            if time.monotonic() >= limits.deadline:
+                return ended(cut_off=True)
+        if found.round in WORK["turn_after_rounds"]:
+            # the doors still unmet are those a corridor's straight run cannot reach: such a
+            # corridor turns a corner for the rounds that follow, from where it lay
+            doors = current.rooms.unmet_doors(best[0].state)
+            turned_spec, made = shapes.with_turns(current.spec, [door[:2] for door in doors])
+            if made:
+                geometry = shapes.turned_geometry(current.rooms.geometry(best[0].state), made, doors)
+                current = _Searched.of(turned_spec, lshape.seeds_spec(turned_spec), outline, soft)
+                turned += made
+                best.clear()
+                carried[:] = [current.rooms.state_of(geometry)]
+    return ended()
+
+
+@dataclass(frozen=True)
+class _Searched:
+    """The spec the rounds search, its drawn spec (lshape.seeds_spec) and their Rooms."""
+
+    spec: Spec
+    drawn: Spec
+    rooms: Rooms
+
+    @staticmethod
+    def of(spec: Spec, drawn: Spec, outline: tuple[float, float], soft: bool) -> _Searched:
+        sides = initial.drawn_sides(drawn, outline, shrink=1.0 if soft else None)
+        return _Searched(spec, drawn, Rooms.of(drawn, sides, outline, outline_given=not soft))
 
 
 def _sized(spec: Spec, geometry: dict[str, Rect], rng: random.Random, seed: int,

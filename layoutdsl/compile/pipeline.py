@@ -126,6 +126,9 @@ def compile_from_start(
         # without a first layout SCIP searches alone in the time left (thesis, §5.5.1): it
         # finds the small specs' layouts, rarely one of 20 rooms or more
         spec, rects_start = generated.spec, generated.rects
+        if generated.turned and not options.quiet:
+            print(f"compile: {', '.join(generated.turned)} turn a corner (L-shaped rooms) to reach doors "
+                  "a straight corridor left unmet", file=sys.stderr)
         if generated.grown is not None and not options.quiet:
             print(f"compile: the boundary grew to {generated.grown[0]:g} x {generated.grown[1]:g} m "
                   f"for this arrangement (--grow-boundary)", file=sys.stderr)

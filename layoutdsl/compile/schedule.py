@@ -89,15 +89,18 @@ def moves_of_round(rooms: Rooms, round_index: int) -> int:
 def rounds(rooms: Rooms, starts, seed: int, deadline: float | None,
            max_rounds: int) -> Iterator[Found | None]:
     """The best chain of each round in turn; None when `deadline` (time.monotonic()) cut the
-    round off. `starts(round_index, chain_index)` gives each chain's initial state."""
+    round off. `starts(round_index, chain_index)` gives each chain's initial state; `rooms`
+    is a Rooms, or a callable giving each round's (the generator may reshape rooms between
+    rounds)."""
     with ThreadPoolExecutor(max_workers=CHAINS) as pool:
         for round_index in range(max_rounds):
-            moves = moves_of_round(rooms, round_index)
+            this = rooms(round_index) if callable(rooms) else rooms
+            moves = moves_of_round(this, round_index)
             cancel = np.zeros(1, dtype=np.int64)
             timer = _cancel_at(deadline, cancel)
             states = [starts(round_index, c) for c in range(CHAINS)]
             try:
-                results = list(pool.map(lambda job: run_chain(rooms, job[0], job[1], moves, cancel),
+                results = list(pool.map(lambda job: run_chain(this, job[0], job[1], moves, cancel),
                                         zip(states, chain_seeds(seed, round_index))))
             finally:
                 if timer is not None:

@@ -10,34 +10,30 @@ spec's room shapes cannot draw:
   the fourth cannot touch all three), while one L-room wrapping two of the others can.
 
 A K4 with a corridor-like room (type C: corridors, halls, lobbies) is drawn instead: that
-room gets an arm (`with_l_rooms`), an L that wraps two of the others, its area shared
-between its box (BOX_SHARE of its long side) and its arm (ARM_SHARE, across the box).
+room gets an arm (`with_l_rooms`), an L that wraps two of the others (shapes.py).
 
 Separating triangles (three rooms joined pairwise with rooms both inside and outside the
 triangle) are drawable with rectangles when the triangle's rooms may meet around a point;
 they are left to the generator.
+
+The generator also turns corridors: a corridor-like room of a door its best arrangement
+still leaves unmet gets an arm, the same L (shapes.py), for the rounds that follow.
 """
 
 from __future__ import annotations
 
-from dataclasses import replace
 from itertools import combinations
 
 import networkx as nx
 
 from layoutdsl.compile.explain import E908
 from layoutdsl.compile.graph import room_graph
+from layoutdsl.compile.shapes import with_arms
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.diagnostics.source import Span
-from layoutdsl.syntax.ast import Arm, Room, Spec
+from layoutdsl.syntax.ast import Spec
 
 _FALLBACK_SPAN = Span(1, 1, 1, 2)
-
-
-BOX_SHARE = 0.7
-ARM_SHARE = 0.4
-"""Shares of a corridor-like room's long side (targets and bounds) its box keeps and its
-new arm gets when it becomes an L (`with_l_rooms`): 110 % of its length in all."""
 
 
 def with_l_rooms(spec: Spec) -> tuple[Spec, list[str]]:
@@ -57,34 +53,7 @@ def with_l_rooms(spec: Spec) -> tuple[Spec, list[str]]:
         chosen = max(corridors, key=lambda r: (graph.degree(r), -list(rooms).index(r)))
         armed.add(chosen)
         made.append(chosen)
-    if not made:
-        return spec, []
-    new_rooms, arms = [], list(spec.arms)
-    for room in spec.rooms:
-        if room.id in made:
-            box, arm = _split_into_l(room)
-            new_rooms.append(box)
-            arms.append(arm)
-        else:
-            new_rooms.append(room)
-    return replace(spec, rooms=tuple(new_rooms), arms=tuple(arms)), made
-
-
-def _split_into_l(room: Room) -> tuple[Room, Arm]:
-    """The room's box (its long side shortened to BOX_SHARE) and an arm across it, as wide
-    as the room and ARM_SHARE of its long side long."""
-    wide = room.target_w >= room.target_h
-    if wide:
-        box = replace(room, min_w=room.min_w * BOX_SHARE, max_w=room.max_w * BOX_SHARE,
-                      target_w=room.target_w * BOX_SHARE)
-        arm = Arm(room.id, room.min_h, room.max_h, room.target_h, room.min_w * ARM_SHARE,
-                  room.max_w * ARM_SHARE, room.target_w * ARM_SHARE, 1.0, 1e3)
-    else:
-        box = replace(room, min_h=room.min_h * BOX_SHARE, max_h=room.max_h * BOX_SHARE,
-                      target_h=room.target_h * BOX_SHARE)
-        arm = Arm(room.id, room.min_h * ARM_SHARE, room.max_h * ARM_SHARE, room.target_h * ARM_SHARE,
-                  room.min_w, room.max_w, room.target_w, 1.0, 1e3)
-    return box, arm
+    return with_arms(spec, made), made
 
 
 def undrawable(spec: Spec) -> list[Diagnostic]:
