@@ -186,7 +186,10 @@ def convert(
     rooms: list[Room] = []
     arms: list[Arm] = []
     hints: list[Hint] = []
-    outside = _open_to_outside(building)
+    # entrances that must open to the outside; with hints the arrangement is the original's,
+    # where an entrance in a recess of the outline opens outside without touching the
+    # boundary that onB asks for, so only those on the plan's edge get it
+    outside = _open_to_outside(building, on_edge_only=options.hints)
     for space in building.spaces:
         room_id = ids[space.id]
         ratio = space.rectangularization_ratio
@@ -241,14 +244,14 @@ PLAN_EDGE_M = 0.5
 """Metres within which a space's box counts as touching the plan's bounding box."""
 
 
-def _open_to_outside(building: Building) -> set[str]:
+def _open_to_outside(building: Building, on_edge_only: bool = False) -> set[str]:
     """The ids of the entrances that open to the outside in the original: by the realism
     measure (layout.realism: at least a door's width of outline on space that a 0.6 m square
     reaches from beyond the plan, so an entrance in a recess of the outline counts, one in a
     closed courtyard does not), or whose bounding box reaches the plan's."""
     entrances = [space for space in building.spaces if opens_outside(space.spec_type, space.label)]
     found = {space.id for space in entrances if _on_plan_edge(space, building)}
-    if len(found) == len(entrances):
+    if on_edge_only or len(found) == len(entrances):
         return found
     scale = building.metres_per_unit
     spaces = [RealismSpace(space.id, space.label, space.spec_type,

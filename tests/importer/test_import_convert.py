@@ -240,8 +240,8 @@ def test_convert_reports_buildings_built_in_code_that_the_reader_would_refuse():
     assert [d.code for d in diagnostics] == ["E410"] and spec.rooms == ()
 
 
-def _entrance_on_boundary(spaces) -> bool:
-    spec, _ = _import(plan_xml(spaces))
+def _entrance_on_boundary(spaces, options: ImportOptions = ImportOptions()) -> bool:
+    spec, _ = _import(plan_xml(spaces), options)
     (entrance,) = [room for room in spec.rooms if room.rtype == "E"]
     return entrance.on_boundary
 
@@ -251,7 +251,11 @@ def test_an_entrance_in_a_recess_of_the_outline_opens_outside_and_gets_onb():
     # box nowhere near the plan's edge, its front on the outside
     wings = [PlanSpace("l", "R", "ROOM", rect(0, 0, 300, 1000)), PlanSpace("r", "R", "ROOM", rect(700, 0, 300, 1000)),
              PlanSpace("b", "R", "ROOM", rect(300, 500, 400, 500))]
-    assert _entrance_on_boundary(wings + [PlanSpace("e", "E", "ENTRANCE", rect(400, 300, 200, 200))])
+    entrance = PlanSpace("e", "E", "ENTRANCE", rect(400, 300, 200, 200))
+    assert _entrance_on_boundary(wings + [entrance])
+    # keeping the arrangement (hints), it stays in its recess, open without touching the
+    # boundary: onB would ask the original arrangement for what it does not do
+    assert not _entrance_on_boundary(wings + [entrance], ImportOptions(hints=True))
 
 
 def test_an_entrance_on_a_closed_courtyard_does_not_get_onb():
