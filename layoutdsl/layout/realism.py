@@ -186,6 +186,14 @@ def find_slivers(spaces: Sequence[Space], walldim: float, usable_width: float = 
                  tolerance: float = 1e-3) -> tuple[Sliver, ...]:
     """Facing walls of two different rooms more than a wall and less than `usable_width`
     apart, along more than a wall's thickness (rectangular rooms; exact, no raster)."""
+    return tuple(gap for gap in facing_gaps(spaces, walldim, usable_width - tolerance, tolerance)
+                 if gap.width > walldim + tolerance)
+
+
+def facing_gaps(spaces: Sequence[Space], walldim: float, below: float,
+                tolerance: float = 1e-3) -> tuple[Sliver, ...]:
+    """Facing walls of two different rooms less than `below` apart (a wall apart included),
+    along more than a wall's thickness, each pair once (its longest stretch)."""
     parts = [(space.id, box) for space in spaces for box in space.boxes]
     found: dict[tuple[str, str], Sliver] = {}
     for i, (a, ba) in enumerate(parts):
@@ -193,7 +201,7 @@ def find_slivers(spaces: Sequence[Space], walldim: float, usable_width: float = 
             if a == b:
                 continue
             for gap, overlap in _facing(ba, bb):
-                if walldim + tolerance < gap < usable_width - tolerance and overlap > walldim + tolerance:
+                if gap < below and overlap > walldim + tolerance:
                     key = (a, b) if a < b else (b, a)
                     sliver = Sliver(key[0], key[1], round(gap, 6), round(overlap, 6))
                     if key not in found or found[key].length < sliver.length:

@@ -1044,6 +1044,11 @@ def _widen(problem: _Problem, geometry: dict[str, Rect], pair: Pair,
 SLIVER_ROUNDS = 4
 """Solves of `without_slivers`: each adds the pairs the last one left a sliver between."""
 
+SLIVER_MARGIN = 0.5
+"""Metres beyond usable width within which facing pairs get their binary from the first
+solve on (measured on cml_new_58: adding only the slivers found, one new sliver appeared
+per solve and four solves were not enough)."""
+
 
 def without_slivers(spec: Spec, rects: dict[str, Rect], *, usable_width: float, deadline: float,
                     nodes: int, seed: int) -> dict[str, Rect] | None:
@@ -1056,7 +1061,7 @@ def without_slivers(spec: Spec, rects: dict[str, Rect], *, usable_width: float, 
     other across a sliver gets one binary: shut to a wall, or open to usable width. Closing
     one sliver can open another between rooms that moved, so the pairs add up over rounds.
     """
-    from layoutdsl.layout.realism import Space, find_slivers
+    from layoutdsl.layout.realism import Space, facing_gaps, find_slivers
 
     problem = boxed_problem(spec, rects) if spec.arms else problem_of(spec)
     ids = [room.id for room in problem.spec.rooms]
@@ -1075,12 +1080,17 @@ def without_slivers(spec: Spec, rects: dict[str, Rect], *, usable_width: float, 
     joined = {frozenset(pair) for pair in problem.joins}
     gaps: dict[Pair, float] = {}
     current = geometry
-    for _ in range(SLIVER_ROUNDS + 1):
+    for round_index in range(SLIVER_ROUNDS + 1):
         spaces = [Space(room_id, "", "R", ((x, y, x + w, y + h),)) for room_id, (x, y, w, h) in current.items()]
         found = [sliver for sliver in find_slivers(spaces, problem.walldim, usable_width)
                  if frozenset((sliver.a, sliver.b)) not in joined]
         if not found:
             return None if current is geometry else current
+        if round_index == 0:
+            # the pairs that face each other nearly a usable width apart or closer: shutting
+            # one sliver moves rooms, and these are the gaps that become the next ones
+            found += [gap for gap in facing_gaps(spaces, problem.walldim, usable_width + SLIVER_MARGIN)
+                      if frozenset((gap.a, gap.b)) not in joined and gap not in found]
         if len(gaps) and all(_ordered(problem, s.a, s.b) in gaps for s in found):
             return None  # the binaries allowed it and SCIP's tolerance did not: give up
         for sliver in found:
