@@ -11,7 +11,6 @@ from pathlib import Path
 import pytest
 
 from layoutdsl.diagnostics import exitcodes
-from layoutdsl.syntax.ast import Adjacency
 from layoutdsl.compile import compile_spec
 from layoutdsl.layout.geometry import layout_from_rects
 from layoutdsl.model import (
@@ -26,30 +25,9 @@ from layoutdsl.model import (
 from layoutdsl.solve import SolveOptions, polish, solve
 from layoutdsl.layout.verify import verify
 
-from spec_cases import SMALL_LAY, room, spec
+from spec_cases import FIVE, FIVE_RECTS, SMALL_LAY
 
 ROOT = Path(__file__).resolve().parents[2]
-
-# Five rooms around a corridor; small enough to solve to a 1 % gap in about a second.
-FIVE = spec(
-    "five",
-    [room("A", (3.2, 4.8, 4), (2.4, 3.6, 3)), room("B", (2.4, 3.6, 3), (2.4, 3.6, 3)),
-     room("C", (6.4, 9.6, 8), (1.6, 2.4, 2), ar=(1, 6), rtype="C"),
-     room("D", (2.4, 3.6, 3), (3.2, 4.8, 4), on_boundary=True), room("E", (2.4, 3.6, 3), (2.4, 3.6, 3))],
-    15, 10,
-    adjacencies=[Adjacency("A", "C", 0.9, "e"), Adjacency("B", "C", 0.9, "e"), Adjacency("D", "C", 0.9, "i"),
-                 Adjacency("A", "B", 0.9, "e"), Adjacency("E", "C", 0.9, "e")],
-)
-
-# A feasible geometry for FIVE: C across the middle, A, B above it, D, E below.
-FIVE_RECTS = {
-    "C": (1.0, 4.0, 8.0, 2.0),
-    "A": (1.0, 6.2, 4.0, 3.0),
-    "B": (5.2, 6.2, 3.0, 3.0),
-    "D": (1.0, 0.0, 3.0, 3.8),
-    "E": (4.2, 0.8, 3.0, 3.0),
-}
-
 
 def _no_start(spec, options):
     return None

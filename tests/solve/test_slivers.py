@@ -17,31 +17,10 @@ from layoutdsl.layout.verify import verify
 from layoutdsl.solve import SolveOptions
 from layoutdsl.solve.relations import without_slivers
 
-from layoutdsl.syntax.ast import Adjacency
-
-from spec_cases import room, spec
+from spec_cases import FIVE, FIVE_RECTS
 
 ROOT = Path(__file__).resolve().parents[2]
 USABLE = 0.6
-
-# Five rooms round a corridor (as tests/compile/test_pipeline.py's FIVE) and a layout of them
-FIVE = spec(
-    "five",
-    [room("A", (3.2, 4.8, 4), (2.4, 3.6, 3)), room("B", (2.4, 3.6, 3), (2.4, 3.6, 3)),
-     room("C", (6.4, 9.6, 8), (1.6, 2.4, 2), ar=(1, 6), rtype="C"),
-     room("D", (2.4, 3.6, 3), (3.2, 4.8, 4), on_boundary=True), room("E", (2.4, 3.6, 3), (2.4, 3.6, 3))],
-    15, 10,
-    adjacencies=[Adjacency("A", "C", 0.9, "e"), Adjacency("B", "C", 0.9, "e"), Adjacency("D", "C", 0.9, "i"),
-                 Adjacency("A", "B", 0.9, "e"), Adjacency("E", "C", 0.9, "e")],
-)
-FIVE_RECTS = {
-    "C": (1.0, 4.0, 8.0, 2.0),
-    "A": (1.0, 6.2, 4.0, 3.0),
-    "B": (5.2, 6.2, 3.0, 3.0),
-    "D": (1.0, 0.0, 3.0, 3.8),
-    "E": (4.2, 0.8, 3.0, 3.0),
-}
-
 
 def _facing_gaps(rects, walldim):
     """(a, b, gap) for every two rectangles whose walls face each other along more than a
