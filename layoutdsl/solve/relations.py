@@ -1054,8 +1054,8 @@ def without_slivers(spec: Spec, rects: dict[str, Rect], *, usable_width: float, 
                     nodes: int, seed: int) -> dict[str, Rect] | None:
     """The rectangles (a layout of the spec; an L-room's box and arm by their own ids) with
     every gap between two rooms' facing walls a wall exactly or at least `usable_width`
-    wide, the sizes as near the rectangles' own as that allows; None when the rectangles have no
-    sliver, or when the relations they hold do not allow it within SLIVER_ROUNDS solves.
+    wide, the sizes as near the rectangles' own as that allows; None when the rectangles
+    have no sliver, or when their relations do not allow it within SLIVER_ROUNDS solves.
 
     Every pair keeps its relation (the LP of the final sizing); each pair that faces the
     other across a sliver gets one binary: shut to a wall, or open to usable width. Closing
@@ -1100,7 +1100,9 @@ def without_slivers(spec: Spec, rects: dict[str, Rect], *, usable_width: float, 
         outcome = _solve_active(problem, options, mode="final", seconds=deadline - time.monotonic(),
                                 nodes=nodes, seed=seed, orientations=orientations, turnable=frozenset(),
                                 start=None, feasibility_emphasis=False, within=(current, None), gaps=gaps)
-        if outcome is None or max(outcome.stretched.values(), default=0.0) > STRETCH_NOISE_M or check_start(problem.checked or problem.spec, outcome.rects):
+        if outcome is None or max(outcome.stretched.values(), default=0.0) > STRETCH_NOISE_M:
+            return None
+        if check_start(problem.checked or problem.spec, outcome.rects):
             return None
         current = outcome.rects
     return None
