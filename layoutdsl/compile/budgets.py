@@ -34,8 +34,8 @@ WORK = {
 TIME = {
     "generate": 0.8,   # share of the time limit the generator may use before it is cut off
     "probe": 0.05,     # SCIP's presolve-only infeasibility probe (at most 5 s)
-    "polish": 0.1,
-    "slivers": 0.1,    # the best layout's slivers shut or opened (solve.relations.without_slivers)     # polishing the generated layout with its relations fixed (solve.polish)
+    "polish": 0.1,     # polishing the generated layout with its relations fixed (solve.polish)
+    "slivers": 0.1,    # the best layout's slivers shut or opened (solve.relations.without_slivers)
     "lns": {True: 0.7, False: 0.9},  # share of what is left for neighbourhood search, for
                                      # specs of at most / more than LNS_SMALL rooms
 }
