@@ -14,9 +14,9 @@ than the round before; its best state, when within `repair_max_violation_m` of a
 packed and handed to the sizing stage, whose relation model meets every door exactly, keeps
 every other pair a wall apart and brings the sizes near their targets. After the rounds of
 WORK["turn_after_rounds"], a corridor-like room of each door between two of them that the
-best state still leaves unmet turns a corner (shapes.with_turns): each becomes an L, split where it lies, and the rounds
-go on from there. The first rectangles
-that pass `check_start` are the answer. Every limit is work (budgets.WORK); the deadline
+best state still leaves unmet turns a corner (shapes.with_turns): it becomes an L, split
+where it lies, and the rounds go on from there. The first rectangles that pass
+`check_start` are the answer. Every limit is work (budgets.WORK); the deadline
 only cuts a compile off, and the result then says so (`cut_off`).
 
 A spec without a boundary of its own (`boundary.chosen`), or a compile allowed to grow a

@@ -24,7 +24,7 @@ import math
 import random
 import threading
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
@@ -86,15 +86,15 @@ def moves_of_round(rooms: Rooms, round_index: int) -> int:
     return int(min(MAX_MOVES, MOVES_PER_ROOM * len(rooms.ids) * ROUND_GROWTH ** round_index))
 
 
-def rounds(rooms: Rooms, starts, seed: int, deadline: float | None,
+def rounds(rooms_of: Callable[[int], Rooms], starts, seed: int, deadline: float | None,
            max_rounds: int) -> Iterator[Found | None]:
     """The best chain of each round in turn; None when `deadline` (time.monotonic()) cut the
-    round off. `starts(round_index, chain_index)` gives each chain's initial state; `rooms`
-    is a Rooms, or a callable giving each round's (the generator may reshape rooms between
-    rounds)."""
+    round off. `rooms_of(round_index)` gives the rooms a round searches (the generator may
+    reshape them between rounds), `starts(round_index, chain_index)` each chain's initial
+    state."""
     with ThreadPoolExecutor(max_workers=CHAINS) as pool:
         for round_index in range(max_rounds):
-            this = rooms(round_index) if callable(rooms) else rooms
+            this = rooms_of(round_index)
             moves = moves_of_round(this, round_index)
             cancel = np.zeros(1, dtype=np.int64)
             timer = _cancel_at(deadline, cancel)
