@@ -25,20 +25,30 @@ new arm gets when it becomes an L: 110 % of its length in all."""
 
 def with_turns(spec: Spec, doors) -> tuple[Spec, list[str]]:
     """The spec with, for each of `doors` (room, room; an arm by its arm id) between two
-    corridor-like rooms neither of which is L-shaped yet, one of them made an L (the one with
-    more doors, then the first in spec order), and the rooms made so."""
+    corridor-like rooms neither of which is L-shaped yet, one of them made an L, and the
+    rooms made so (`with_corridor_arms`). A door with a room that is no corridor turns
+    nothing: the room can move to its corridor; two corridors may need a turn."""
+    pairs = [(a.removesuffix(ARM_SUFFIX), b.removesuffix(ARM_SUFFIX)) for a, b in doors]
+    return with_corridor_arms(spec, pairs, corridors_needed=2)
+
+
+def with_corridor_arms(spec: Spec, groups, corridors_needed: int = 1) -> tuple[Spec, list[str]]:
+    """The spec with, for each group of rooms none of which is L-shaped yet (nor made so for
+    an earlier group) and at least `corridors_needed` of which are corridor-like, one of its
+    corridor-like rooms made an L: the one with the most doors, then the first in spec
+    order. Also the rooms made so."""
     graph = room_graph(spec)
     rooms = {room.id: room for room in spec.rooms}
+    order = {room_id: index for index, room_id in enumerate(rooms)}
     armed = {arm.room for arm in spec.arms}
     made: list[str] = []
-    for a, b in doors:
-        a, b = a.removesuffix(ARM_SUFFIX), b.removesuffix(ARM_SUFFIX)
-        if armed & {a, b}:
+    for group in groups:
+        if armed & set(group):
+            continue  # an earlier group's L already covers this one
+        corridors = [r for r in group if r in rooms and rooms[r].rtype == "C"]
+        if not corridors or len(corridors) < corridors_needed:
             continue
-        corridors = [r for r in (a, b) if r in rooms and rooms[r].rtype == "C"]
-        if len(corridors) < 2:
-            continue  # a room can move to its corridor; two corridors may need a turn
-        chosen = max(corridors, key=lambda r: (graph.degree(r), -list(rooms).index(r)))
+        chosen = max(corridors, key=lambda r: (graph.degree(r), -order[r]))
         armed.add(chosen)
         made.append(chosen)
     return with_arms(spec, made), made

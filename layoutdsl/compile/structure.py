@@ -16,8 +16,9 @@ Separating triangles (three rooms joined pairwise with rooms both inside and out
 triangle) are drawable with rectangles when the triangle's rooms may meet around a point;
 they are left to the generator.
 
-The generator also turns corridors: a corridor-like room of a door its best arrangement
-still leaves unmet gets an arm, the same L (shapes.py), for the rounds that follow.
+The generator also turns corridors: of each door between two corridor-like rooms that its
+best arrangement still leaves unmet, one gets an arm, the same L (shapes.py), for the rounds
+that follow.
 """
 
 from __future__ import annotations
@@ -28,7 +29,7 @@ import networkx as nx
 
 from layoutdsl.compile.explain import E908
 from layoutdsl.compile.graph import room_graph
-from layoutdsl.compile.shapes import with_arms
+from layoutdsl.compile.shapes import with_corridor_arms
 from layoutdsl.diagnostics import Diagnostic
 from layoutdsl.diagnostics.source import Span
 from layoutdsl.syntax.ast import Spec
@@ -40,20 +41,8 @@ def with_l_rooms(spec: Spec) -> tuple[Spec, list[str]]:
     """The spec with one corridor-like room of every four rooms joined pairwise (and none
     L-shaped yet) made an L, and the rooms made so; rooms of type C only, first the one with
     the most doors (then spec order)."""
-    graph = room_graph(spec)
-    rooms = {room.id: room for room in spec.rooms}
-    made: list[str] = []
     armed = {arm.room for arm in spec.arms}
-    for four in rectangle_k4s(graph, armed):
-        if armed & set(four):
-            continue  # an earlier group's L already covers this one
-        corridors = [r for r in four if rooms[r].rtype == "C"]
-        if not corridors:
-            continue
-        chosen = max(corridors, key=lambda r: (graph.degree(r), -list(rooms).index(r)))
-        armed.add(chosen)
-        made.append(chosen)
-    return with_arms(spec, made), made
+    return with_corridor_arms(spec, rectangle_k4s(room_graph(spec), armed))
 
 
 def undrawable(spec: Spec) -> list[Diagnostic]:
