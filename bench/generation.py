@@ -95,7 +95,7 @@ def import_original(path: Path, hints: bool = False):
 
 def original_void_share(path: Path) -> float:
     """The original plan's enclosed voids as a share of its room area."""
-    from layoutdsl.evaluate.plan import realism_of_building
+    from layoutdsl.importer.building import realism_of_building
     from layoutdsl.evaluate.topology import room_ids
     from layoutdsl.importer import read_building
 

@@ -12,7 +12,7 @@ import networkx as nx
 import numpy as np
 from scipy import ndimage
 
-from layoutdsl.importer.building import Building
+from layoutdsl.importer.building import Building, realism_of_building
 from layoutdsl.evaluate.explore import ExploreSettings, ExplorationResult, explore
 from layoutdsl.evaluate.grid import coarsen, inflate, nearest_cell, room_cells
 from layoutdsl.evaluate.metrics import PlanAreas, plan_areas, room_shapes, room_sizes
@@ -21,7 +21,7 @@ from layoutdsl.evaluate.paths import DistanceGrid, shortest_path
 from layoutdsl.evaluate.portals import MapCheck, realise_portal_graph
 from layoutdsl.evaluate.topology import room_graph, room_ids, sorted_rooms
 from layoutdsl.emit.raster import rasterize_building
-from layoutdsl.layout.realism import Realism, Space, measure_spaces
+from layoutdsl.layout.realism import Realism
 
 
 @dataclass(frozen=True, slots=True)
@@ -139,15 +139,6 @@ class Reach:
     def _too_small(self, room: str) -> str:
         return (f"`{room}` is smaller than the robot: no spot in it is {self.diameter / 2:g} m "
                 f"(the robot's radius) from every wall")
-
-
-def realism_of_building(building: Building, ids: dict[str, str]) -> Realism:
-    """layout.realism's measures on a plan's polygons (metres, y up, as rasterize_building)."""
-    scale = building.metres_per_unit
-    spaces = [Space(ids.get(space.id, space.id), space.label, space.rtype,
-                    polygon=tuple((p.x * scale, -p.y * scale) for p in space.polygon))
-              for space in building.spaces if len(space.polygon) >= 3]
-    return measure_spaces(spaces)
 
 
 def _anchor(room: str, index: int, rooms, traversable: np.ndarray, resolution: float) -> RoomAnchor | None:

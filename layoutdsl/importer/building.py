@@ -11,6 +11,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from layoutdsl.layout.realism import Realism, measure_spaces
+from layoutdsl.layout.realism import Space as RealismSpace
 from layoutdsl.syntax.ast import ROOM_TYPES
 
 
@@ -156,3 +158,14 @@ class Building:
                 if edges.get(key) != "EXPLICIT":
                     edges[key] = portal.type
         return edges
+
+
+def realism_of_building(building: Building, ids: dict[str, str] | None = None) -> Realism:
+    """layout.realism's measures on a plan's polygons (metres, y up, as rasterize_building),
+    each space named by `ids` (space id -> name; default its own id)."""
+    ids = ids or {}
+    scale = building.metres_per_unit
+    spaces = [RealismSpace(ids.get(space.id, space.id), space.label, space.rtype,
+                           polygon=tuple((p.x * scale, -p.y * scale) for p in space.polygon))
+              for space in building.spaces if len(space.polygon) >= 3]
+    return measure_spaces(spaces)

@@ -24,9 +24,7 @@ from dataclasses import dataclass, replace
 from pathlib import PurePath
 
 from layoutdsl.syntax.ast import Adjacency, Arm, Boundary, Hint, Room, Settings, Spec
-from layoutdsl.importer.building import Building, Space, polygon_area
-from layoutdsl.layout.realism import Space as RealismSpace
-from layoutdsl.layout.realism import measure_spaces
+from layoutdsl.importer.building import Building, Space, polygon_area, realism_of_building
 from layoutdsl.importer.lshape import LFit, fit_l
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.importer import codes
@@ -253,11 +251,8 @@ def _open_to_outside(building: Building, on_edge_only: bool = False) -> set[str]
     found = {space.id for space in entrances if _on_plan_edge(space, building)}
     if on_edge_only or len(found) == len(entrances):
         return found
-    scale = building.metres_per_unit
-    spaces = [RealismSpace(space.id, space.label, space.spec_type,
-                           polygon=tuple((p.x * scale, -p.y * scale) for p in space.polygon))
-              for space in building.spaces if len(space.polygon) >= 3]
-    return found | set(measure_spaces(spaces).open_entrances) & {space.id for space in entrances}
+    opened = set(realism_of_building(building).open_entrances)
+    return found | opened & {space.id for space in entrances}
 
 
 def _on_plan_edge(space: Space, building: Building) -> bool:
