@@ -47,11 +47,6 @@ from layoutdsl.layout.geometry import Rect, RoomSizes
 from layoutdsl.solve.quiet import native_output_silenced
 from layoutdsl.syntax.ast import Spec
 
-
-from collections.abc import Hashable, Mapping, Sequence
-
-from layoutdsl.solve.quiet import native_output_silenced
-
 LABELS = ("N", "E", "S", "W")
 """A vertex's view of an edge, clockwise: red out, blue out, red in, blue in."""
 
