@@ -283,6 +283,67 @@ def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: i
     )
 
 
+I910 = register(
+    "I910",
+    Severity.INFO,
+    "closest-arrangement-outside",
+    "Accompanies E902 when the generator found no layout and its closest arrangement left a "
+    "room that must open to the outside (`onB`) inside the building, or stuck out of the "
+    "boundary the spec gives: names those rooms, worst first, at the first one's `onB`, or "
+    "the overhang at the boundary line, and how much of the boundary the rooms fill.",
+    "A new arrangement of the rooms needs space a packed original may not have had: walls "
+    "between rooms that were not neighbours, and voids where rooms do not line up. A "
+    "boundary the rooms fill almost entirely (an imported office often fills 90 % of its "
+    "bounding box) leaves no arrangement but the original's, and an entrance that must reach "
+    "the outside through such a boundary is the first thing to give. `--grow-boundary` lets "
+    "the boundary grow (compile reports by how much); `import --keep-arrangement` keeps the "
+    "original arrangement.",
+    "# compile: no layout within the limit\n# note: the closest arrangement stuck out of the "
+    "boundary by 3.1 m along x; the rooms' target area fills 95 % of the boundary",
+)
+
+
+def outside_shortfall(spec: Spec, away: tuple[tuple[str, float], ...], overflow: tuple[float, float],
+                      rounds: int, moves: int) -> Diagnostic:
+    """I910: what kept the generator's closest arrangement from the outside (see I910's page)."""
+    parts, notes = [], []
+    span, label = _first_line_span(spec), "the rooms do not fit this boundary"
+    rooms = {room.id: room for room in spec.rooms}
+    if away:
+        parts.append(f"left {len(away)} room{'s' if len(away) != 1 else ''} that must open to the outside "
+                     "(onB) inside the building")
+        notes.append("inside (metres from the outside): " + ", ".join(
+            f"{_room_name(room_id)} {metres:g} m" for room_id, metres in away[:UNMET_SHOWN])
+            + (f" and {len(away) - UNMET_SHOWN} more" if len(away) > UNMET_SHOWN else ""))
+        first = rooms.get(away[0][0].removesuffix(ARM_SUFFIX))
+        if first is not None and first.span is not None:
+            span, label = first.spans.get("on_boundary", first.span), "must open to the outside"
+    if overflow[0] > 0 or overflow[1] > 0:
+        along = " and ".join(f"{metres:g} m along {axis}" for axis, metres in zip("xy", overflow) if metres > 0)
+        parts.append(f"stuck out of the boundary by {along}")
+    boundary = spec.boundary
+    if parts[-1].startswith("stuck out") and boundary is not None and boundary.w * boundary.h > 0:
+        # why it stuck out: a boundary the rooms all but fill has room for one arrangement
+        target = sum(room.target_w * room.target_h for room in spec.rooms)
+        notes.append(f"the rooms' target area fills {100 * target / (boundary.w * boundary.h):.0f} % of the "
+                     f"{boundary.w:g} x {boundary.h:g} boundary; a new arrangement needs walls and voids "
+                     "an original packing may not have")
+    return Diagnostic(
+        code=I910,
+        message=f"the generator's closest arrangement ({rounds} rounds, {moves:,} moves) " + " and ".join(parts),
+        filename=spec.path,
+        span=span,
+        severity=Severity.INFO,
+        label=label,
+        notes=tuple(notes),
+        help=("`--grow-boundary` lets the boundary grow (compile reports by how much); for an imported "
+              "plan, `layoutdsl import --keep-arrangement` keeps the original's arrangement"
+              if overflow[0] > 0 or overflow[1] > 0 else
+              "a room that opens to the outside needs a wall free of doors: fewer doors, wider size "
+              "ranges for it, or `onB` dropped; another `--seed` draws other arrangements"),
+    )
+
+
 def restate_limit(diagnostics: list[Diagnostic], spec: Spec, options, status: str = "time_limit") -> list[Diagnostic]:
     """The diagnostics with every E902 saying `options`' limit.
 

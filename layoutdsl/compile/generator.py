@@ -72,6 +72,12 @@ class Generated:
     unmet: tuple[tuple[str, str, float], ...] = ()
     """Without rectangles: the doors the closest annealed arrangement left unmet, (room,
     room, metres) worst first; they say where the room graph is hard to draw."""
+    away: tuple[tuple[str, float], ...] = ()
+    """Without rectangles: the rooms that must open to the outside (onB) the closest
+    arrangement left inside, (room, metres from the outside) furthest first."""
+    overflow: tuple[float, float] = (0.0, 0.0)
+    """Without rectangles: metres the closest arrangement stuck out of a given boundary,
+    along x and y."""
     turned: tuple[str, ...] = ()
     """Corridor-like rooms the generator made L-shaped (shapes.with_turns): `spec` has
     their arms."""
@@ -146,9 +152,12 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
     turned: list[str] = []
 
     def ended(cut_off: bool = False) -> Generated:
-        unmet = tuple(current.rooms.unmet_doors(best[0].state)) if best else ()
-        return Generated(None, current.spec, "", done_rounds, moves, cut_off=cut_off, unmet=unmet,
-                         turned=tuple(turned))
+        if not best:
+            return Generated(None, current.spec, "", done_rounds, moves, cut_off=cut_off, turned=tuple(turned))
+        away, overflow = current.rooms.outside_shortfall(best[0].state)
+        return Generated(None, current.spec, "", done_rounds, moves, cut_off=cut_off,
+                         unmet=tuple(current.rooms.unmet_doors(best[0].state)), away=tuple(away),
+                         overflow=overflow, turned=tuple(turned))
 
     for found in schedule.rounds(lambda _round: current.rooms, starts, seed, limits.deadline, max_rounds):
         if found is None:

@@ -138,7 +138,7 @@ def compile_from_start(
             # the L the generator gave them did not help within its work limits: say which
             # rooms make the graph hard to draw, and why
             result = replace(result, diagnostics=result.diagnostics + k4s)
-        return _with_unmet_doors(result, spec, generated)
+        return _with_closest_arrangement(result, spec, generated)
     # a verified start polished with nothing searched after: the model needs only the
     # separations of the start's relations (model.settle_separations, in _polish_start)
     checked = (_verified_start(spec, rects_start)
@@ -165,17 +165,23 @@ def compile_from_start(
         timings["total"] = time.monotonic() - began
         return CompileResult(best[1], [], best[2], timings, outcome)
 
-    return _with_unmet_doors(_no_layout(spec, options, outcome, failures, explain_infeasible, timings, began),
-                             spec, generated)
+    return _with_closest_arrangement(_no_layout(spec, options, outcome, failures, explain_infeasible, timings, began),
+                                     spec, generated)
 
 
-def _with_unmet_doors(result: CompileResult, spec: Spec, generated: Generated | None) -> CompileResult:
-    """A result without a layout, with I909 naming the doors the generator's closest
-    arrangement left unmet (when it had one): where the room graph is hard to draw."""
-    if result.layout is not None or generated is None or generated.rects is not None or not generated.unmet:
-        return result
-    note = explain.unmet_doors(spec, generated.unmet, generated.rounds, generated.moves)
-    return replace(result, diagnostics=result.diagnostics + [note])
+def _with_closest_arrangement(result: CompileResult, spec: Spec, generated: Generated | None) -> CompileResult:
+    """A result without a layout, with what kept the generator's closest arrangement from
+    one: I909 names the doors it left unmet (where the room graph is hard to draw), I910
+    the entrances it left inside and how far it stuck out of a given boundary."""
+    if result.status != "no_layout" or generated is None or generated.rects is not None:
+        return result  # a layout, or a proof that there is none (E901), says more
+    notes = []
+    if generated.unmet:
+        notes.append(explain.unmet_doors(spec, generated.unmet, generated.rounds, generated.moves))
+    if generated.away or any(metres > 0 for metres in generated.overflow):
+        notes.append(explain.outside_shortfall(spec, generated.away, generated.overflow, generated.rounds,
+                                               generated.moves))
+    return replace(result, diagnostics=result.diagnostics + notes)
 
 
 def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, Rect] | None,

@@ -328,6 +328,28 @@ class Rooms:
             start = end
         return sorted(unmet, key=lambda door: (-door[2], door[0], door[1]))
 
+    def outside_shortfall(self, state: State) -> tuple[list[tuple[str, float]], tuple[float, float]]:
+        """What keeps a state from a layout besides its doors (cost.violation's other two
+        terms): each room that must open to the outside (onB) but lies inside, with its
+        distance in metres to the outer boundary, furthest first; and (metres, metres) the
+        packing sticks out of the outline along x and y (0, 0 for an outline the tool chose,
+        which the boundary is drawn round)."""
+        geometry = self.geometry(state)
+        right = max(x + w for x, _y, w, _h in geometry.values())
+        top = max(y + h for _x, y, _w, h in geometry.values())
+        outer_w, outer_h = (self.width, self.height) if self.outline_given else (right, top)
+        away = []
+        for i, room_id in enumerate(self.ids):
+            if not self.on_boundary[i]:
+                continue
+            x, y, w, h = geometry[room_id]
+            metres = min(x, y, max(0.0, outer_w - x - w), max(0.0, outer_h - y - h))
+            if metres > 1e-6:
+                away.append((room_id, round(metres, 2)))
+        overflow = ((round(max(0.0, right - self.width), 2), round(max(0.0, top - self.height), 2))
+                    if self.outline_given else (0.0, 0.0))
+        return sorted(away, key=lambda room: (-room[1], room[0])), overflow
+
     def geometry(self, state: State) -> dict[str, Rect]:
         """The packed rectangles of a state."""
         p, q, turned, long_side, short_side = state

@@ -159,3 +159,37 @@ def test_unmet_doors_note_points_at_the_worst_door_and_names_its_triangle():
     assert note.span == spec.adjacencies[1].span
     assert f"{b}-{a} 3.5 m" in note.notes[0]
     assert any("triangle" in line and third in line for line in note.notes[1:])
+
+
+def test_a_too_tight_boundary_without_growth_reports_how_far_the_closest_arrangement_stuck_out():
+    # the rooms at their smallest take 71 m2, twice the outline's 36 m2
+    tight = dataclasses.replace(tree_spec(), boundary=Boundary(6.0, 6.0))
+    generated = generate(tight, seed=0, max_rounds=1)
+    assert generated.rects is None
+    assert generated.overflow[0] > 0 or generated.overflow[1] > 0
+    # the packing's extent holds the rooms at their smallest at least
+    assert (6.0 + generated.overflow[0]) * (6.0 + generated.overflow[1]) >= 71.0
+    assert generated.overflow == generate(tight, seed=0, max_rounds=1).overflow  # work limits decide it
+
+
+def test_closest_arrangement_note_says_what_kept_it_from_the_outside():
+    from layoutdsl.api import lint_source
+    from layoutdsl.compile.explain import outside_shortfall
+    from layoutdsl.diagnostics.source import Source
+    from layoutdsl.syntax.format import format_spec
+
+    spec, _diagnostics = lint_source(Source("tree.lay", format_spec(tree_spec())))  # with the lines' spans
+    entrance = spec.rooms[2]  # the note names whatever rooms the generator reports
+    stuck = outside_shortfall(spec, (), (3.1, 0.0), rounds=2, moves=1000)
+    assert stuck.code == "I910" and not stuck.is_error
+    assert "stuck out of the boundary by 3.1 m along x" in stuck.message
+    assert stuck.span == spec.boundary.span
+    target = sum(room.target_w * room.target_h for room in spec.rooms)
+    fill = round(100 * target / (spec.boundary.w * spec.boundary.h))
+    assert any(f"fills {fill} %" in note for note in stuck.notes)
+    assert "--grow-boundary" in stuck.help
+    inside = outside_shortfall(spec, ((entrance.id, 1.6),), (0.0, 0.0), rounds=2, moves=1000)
+    assert "1 room that must open to the outside (onB) inside" in inside.message
+    assert inside.notes == (f"inside (metres from the outside): {entrance.id} 1.6 m",)
+    assert inside.span == entrance.span
+    assert "--grow-boundary" not in inside.help
