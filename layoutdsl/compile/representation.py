@@ -216,10 +216,10 @@ def _bounds(sizes: RoomSizes) -> tuple[float, ...]:
     return (sizes.lo_long, sizes.hi_long, sizes.lo_short, sizes.hi_short, sizes.min_ar, sizes.max_ar)
 
 
-def _door_lists(n: int, edges: list[tuple[int, int, float]]) -> tuple[np.ndarray, np.ndarray]:
+def _door_lists(n: int, edges: list[tuple[int, int, float, bool]]) -> tuple[np.ndarray, np.ndarray]:
     """Each room's door neighbours, CSR-style: door_to[door_ptr[i]:door_ptr[i + 1]]."""
     lists: list[list[int]] = [[] for _ in range(n)]
-    for a, b, _ in edges:
+    for a, b, *_ in edges:
         lists[a].append(b)
         lists[b].append(a)
     door_ptr = np.zeros(n + 1, dtype=np.int64)
@@ -244,6 +244,8 @@ class Rooms:
     edge_a: np.ndarray
     edge_b: np.ndarray
     need: np.ndarray
+    join: np.ndarray
+    """Per edge: it joins an L-room's box and arm (the cost wants the arm at an end)."""
     group_end: np.ndarray
     """Doors as groups of alternative edges (an L-room's box or arm): edges
     group_end[g - 1]:group_end[g] form door g; the cost counts the best of each."""
@@ -278,7 +280,7 @@ class Rooms:
             door_rooms.append((adj.a, adj.b))
             for a in ends_a:
                 for b in ends_b:
-                    edges.append((index[a], index[b], adj.door / utilization))
+                    edges.append((index[a], index[b], adj.door / utilization, joined))
                     groups.append(door)
         door_ptr, door_to = _door_lists(len(ids), edges)
         return cls(
@@ -289,6 +291,7 @@ class Rooms:
             edge_a=np.array([e[0] for e in edges], dtype=np.int64),
             edge_b=np.array([e[1] for e in edges], dtype=np.int64),
             need=np.array([e[2] for e in edges], dtype=np.float64),
+            join=np.array([e[3] for e in edges], dtype=np.bool_),
             group_end=np.array([k + 1 for k in range(len(edges)) if k + 1 == len(edges) or groups[k + 1] != groups[k]],
                                dtype=np.int64),
             door_ptr=door_ptr, door_to=door_to,
@@ -318,7 +321,7 @@ class Rooms:
         work = new_work(len(self.ids))
         pack_state(p, q, turned, long_side, short_side, self.bounds, self.wall, self.door_ptr, self.door_to, work)
         per_edge = np.zeros(self.edge_a.shape[0])
-        cost_violation(work, self.edge_a, self.edge_b, self.need, self.group_end, self.on_boundary, self.width,
+        cost_violation(work, self.edge_a, self.edge_b, self.need, self.join, self.group_end, self.on_boundary, self.width,
                        self.height, self.wall, self.outline_given, per_edge)
         unmet, start = [], 0
         for g, end in enumerate(self.group_end):

@@ -76,7 +76,7 @@ def run_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, cancel: 
     scale = rooms.width + rooms.height
     give_up_step = int(GIVE_UP_AT * moves)
     return _chain(rooms.target_long, rooms.target_short, rooms.bounds, rooms.edge_a, rooms.edge_b,
-                  rooms.need, rooms.group_end, rooms.door_ptr, rooms.door_to, rooms.on_boundary, rooms.width,
+                  rooms.need, rooms.join, rooms.group_end, rooms.door_ptr, rooms.door_to, rooms.on_boundary, rooms.width,
                   rooms.height, rooms.wall, rooms.outline_given, kernel_seed, moves,
                   START_TEMPERATURE * scale, END_TEMPERATURE * scale, give_up_step, GIVE_UP_M,
                   cancel, *start)
@@ -126,7 +126,7 @@ def _cancel_at(deadline: float | None, cancel: np.ndarray) -> threading.Timer | 
 
 
 @njit(cache=True, nogil=True)
-def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, group_end, door_ptr, door_to, on_boundary,
+def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, join, group_end, door_ptr, door_to, on_boundary,
            width, height, wall, outline_given, seed, moves, t_start, t_end, give_up_step, give_up_m,
            cancel, start_p, start_q, start_turned, start_long, start_short):
     np.random.seed(seed)
@@ -139,7 +139,7 @@ def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, group_end, doo
     # spare arrays, which trade places with the state's when the move is taken
     work = new_work(n)
     pack_state(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to, work)
-    violation, box = cost_violation(work, edge_a, edge_b, need, group_end, on_boundary, width, height, wall,
+    violation, box = cost_violation(work, edge_a, edge_b, need, join, group_end, on_boundary, width, height, wall,
                                     outline_given, per_edge)
     boundary_area = width * height
     cost = violation + COMPACT_WEIGHT * box / boundary_area
@@ -178,7 +178,7 @@ def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, group_end, doo
             new_resized = resized - drift(resized_room, long_side, short_side, drawn_long, drawn_short) \
                 + drift(resized_room, new_long, new_short, drawn_long, drawn_short)
         pack_state(new_p, new_q, new_turned, new_long, new_short, bounds, wall, door_ptr, door_to, work)
-        new_violation, box = cost_violation(work, edge_a, edge_b, need, group_end, on_boundary, width, height, wall,
+        new_violation, box = cost_violation(work, edge_a, edge_b, need, join, group_end, on_boundary, width, height, wall,
                                             outline_given, trial_edge)
         new_cost = new_violation + COMPACT_WEIGHT * box / boundary_area + RESIZE_WEIGHT * new_resized
         delta = new_cost - cost

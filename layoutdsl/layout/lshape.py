@@ -61,6 +61,17 @@ def arm_sizes(arm, room, room_box: Rect) -> list[tuple[float, float]]:
     return [(long_side, short_side) if box_long_x != crosses else (short_side, long_side)]
 
 
+def _drawn_first(sizes: list[tuple[float, float]], drawn: Rect | None) -> list[tuple[float, float]]:
+    """The arm's sizes to try: the size the generator drew it at first (it packed the arm
+    at that size against its neighbours, so an arm moved at its target size would overlap
+    them), when the L allows that orientation."""
+    if drawn is None:
+        return sizes
+    drawn_size = (drawn[2], drawn[3])
+    allowed = {size[0] >= size[1] for size in sizes}
+    return [drawn_size, *sizes] if (drawn_size[0] >= drawn_size[1]) in allowed else sizes
+
+
 def rooms_only(spec: Spec, rects: dict[str, Rect]) -> dict[str, Rect]:
     """The rectangles of the rooms themselves, without the L-rooms' arms."""
     arms = {arm_id(arm.room) for arm in spec.arms}
@@ -214,10 +225,10 @@ def _overlap(a: Rect, b: Rect) -> float:
 
 def seed_arms(spec: Spec, geometry: dict[str, Rect], rng: random.Random, *,
               hints: bool = False) -> dict[str, Rect]:
-    """The geometry with every L-room's arm joined to its box: at its target size (see
-    arm_sizes), in the orientations its L allows, where it overlaps the other boxes, leaves
-    the boundary and misses the L-room's neighbours least, and lies against other rooms
-    most; of equal places, the one nearest where the geometry drew the arm, if it did (the
+    """The geometry with every L-room's arm joined to its box: at the size the geometry drew
+    it, if it did, or at its target size (see arm_sizes), in the orientations its L allows,
+    where it overlaps the other boxes, leaves the boundary and misses the L-room's
+    neighbours least, and lies against other rooms most; of equal places, the one nearest where the geometry drew the arm, if it did (the
     generator draws it as a room of its own, seeds_spec, a wall from its box, maybe turned
     the way the L forbids); then one drawn from `rng`.
 
@@ -248,7 +259,7 @@ def seed_arms(spec: Spec, geometry: dict[str, Rect], rng: random.Random, *,
                   if other in seeded and contact_shortfall(room_box, seeded[other], walldim, wall) > 0]
         best = None
         for option in JOIN_OPTIONS:
-            for size in arm_sizes(arm, rooms[arm.room], room_box):
+            for size in _drawn_first(arm_sizes(arm, rooms[arm.room], room_box), drawn):
                 box = joined_box(room_box, size, option)
                 out = _overlap(box, outside) - _overlap(box, inside)
                 core = (box[0] + allowance, box[1] + allowance, box[2] - 2 * allowance, box[3] - 2 * allowance)

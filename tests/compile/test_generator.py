@@ -193,3 +193,39 @@ def test_closest_arrangement_note_says_what_kept_it_from_the_outside():
     assert inside.notes == (f"inside (metres from the outside): {entrance.id} 1.6 m",)
     assert inside.span == entrance.span
     assert "--grow-boundary" not in inside.help
+
+
+def test_an_l_rooms_arm_met_along_the_middle_of_its_box_is_not_yet_a_layout():
+    """The sizing stage joins an L's arm at an end of its box; an arm the packing meets with
+    the middle of the box (a T) counts as the join left unmet, by FLUSH_WEIGHT x its distance
+    from the nearer end."""
+    import numpy as np
+
+    from layoutdsl.compile.cost import FLUSH_WEIGHT
+    from layoutdsl.compile.representation import Rooms
+    from layoutdsl.layout import lshape
+    from layoutdsl.syntax.ast import Arm, arm_id
+
+    box = room("C0", 2.0, 10.0, rtype="C", var=0.0)
+    under = room("R0", 4.0, 4.0, var=0.0)
+    spec = Spec("t", (box, under), Boundary(30.0, 30.0), (adjacent("C0", "R0"),),
+                arms=(Arm("C0", 4.0, 4.0, 4.0, 2.0, 2.0, 2.0, 1.0, 3.0),))
+    drawn = lshape.seeds_spec(spec)
+    sides = {r.id: (max(r.target_w, r.target_h), min(r.target_w, r.target_h)) for r in drawn.rooms}
+    rooms = Rooms.of(drawn, sides, (30.0, 30.0), outline_given=True)
+    # the door C0-R0 is two edges (box or arm to R0), then the box-arm join
+    (k,) = np.flatnonzero(rooms.join)
+    assert {rooms.ids[rooms.edge_a[k]], rooms.ids[rooms.edge_b[k]]} == {"C0", arm_id("C0")}
+    # the box stands at x 0-2, y 0-10; R0 right of it at the bottom, the arm right of it on R0
+    middle = {"C0": (0.0, 0.0, 2.0, 10.0), "R0": (2.2, 0.0, 4.0, 4.0), arm_id("C0"): (2.2, 4.2, 4.0, 2.0)}
+    (join,) = [door for door in rooms.unmet_doors(rooms.state_of(middle)) if door[1] == arm_id("C0")]
+    # packed, the arm stays on R0 (y 4.2-6.2): 3.8 m from the box's top end, 4.2 from its foot
+    assert abs(join[2] - round(FLUSH_WEIGHT * 3.8, 2)) < 1e-9
+    # R0 as tall as the box's top less the arm's height and a wall: the arm ends flush
+    flush = dict(middle, R0=(2.2, 0.0, 4.0, 7.8), **{arm_id("C0"): (2.2, 8.0, 4.0, 2.0)})
+    tall = Spec("t", (box, room("R0", 4.0, 7.8, var=0.0)), spec.boundary, spec.adjacencies, arms=spec.arms)
+    drawn_tall = lshape.seeds_spec(tall)
+    sides_tall = {r.id: (max(r.target_w, r.target_h), min(r.target_w, r.target_h)) for r in drawn_tall.rooms}
+    rooms_tall = Rooms.of(drawn_tall, sides_tall, (30.0, 30.0), outline_given=True)
+    assert not [door for door in rooms_tall.unmet_doors(rooms_tall.state_of(flush)) if door[1] == arm_id("C0")]
+    assert np.array_equal(rooms_tall.join, rooms.join)

@@ -124,3 +124,16 @@ def test_an_adjacency_goes_to_the_box_a_wall_away_not_to_one_overlapping_the_nei
     geometry = {"C0": (0.0, 0.0, 10.0, 2.0), arm_id("C0"): (3.0, 2.0, 2.0, 6.0), "R0": (2.0, 2.2, 4.0, 4.0)}
     (adjacency,) = boxes_spec(spec, geometry)[0].adjacencies
     assert {adjacency.a, adjacency.b} == {"R0", "C0"}
+
+
+def test_an_arm_the_generator_drew_at_a_box_end_keeps_its_size_and_place() -> None:
+    """The generator packs the arm as a room of its own, sized against its neighbours; moved
+    back to its target size it would overlap them. Drawn a wall below the box's left end at
+    2.4 x 7 (target 2 x 6), it is joined right there at 2.4 x 7."""
+    spec = _spec()
+    box = (0.0, 10.0, 10.0, 2.0)
+    drawn = (0.0, 10.0 - 0.2 - 7.0, 2.4, 7.0)
+    geometry = {"C0": box, arm_id("C0"): drawn, "R0": (3.0, 5.0, 4.0, 4.0)}
+    seeded = seed_arms(spec, geometry, random.Random(0))[arm_id("C0")]
+    assert seeded == joined_box(box, (2.4, 7.0), "above:lo")
+    assert _room_overlap(seeded, geometry["R0"]) == 0.0
