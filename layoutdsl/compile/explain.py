@@ -255,8 +255,8 @@ def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: i
     notes = [f"unmet (gap plus missing shared wall): {listed}{more}"]
     # the structure behind them: three rooms joined pairwise meet only around one point,
     # and a door in two such triangles has both ends of its wall pinned (measured on the
-    # 80 room graphs of shared/graphs, bench/results/generation-graphs.txt: 10 of the 13 the
-    # generator does not draw have two triangles of doors sharing a door, 18 of the 67 it draws)
+    # 80 room graphs of shared/graphs, bench/results/generation-graphs.txt: 7 of the 9 the
+    # generator does not draw have two triangles of doors sharing a door, 21 of the 71 it draws)
     doors = spec.door_neighbours()
     for x, y, metres in unmet[:UNMET_SHOWN]:
         x, y = x.removesuffix(ARM_SUFFIX), y.removesuffix(ARM_SUFFIX)
