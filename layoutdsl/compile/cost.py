@@ -50,14 +50,21 @@ RESIZE_WEIGHT = 0.05
 """Per metre a side is from its target length: rooms stay near their target sizes."""
 
 
+@njit(cache=True, inline="always")
+def distance_to_outside(x, y, w, h, outer_w, outer_h):
+    """Metres from a room (x, y, w, h) to the nearest side of the outer boundary."""
+    return min(min(x, y), min(max(0.0, outer_w - x - w), max(0.0, outer_h - y - h)))
+
+
 @njit(cache=True)
 def violation(work, edge_a, edge_b, need, join, group_end, on_boundary, width, height, wall, outline_given,
               per_edge):
     """(violation in metres, bounding box area) of a packing (representation.pack_state's
     `work`); per_edge[k] gets door k's share, which the moves read to pick unmet doors.
     A door of an L-room is a group of alternative edges (its box's, its arm's; group_end):
-    the best of them counts. join[k]: edge k joins an L-room's box and arm. `outline_given`: onB is measured to the outline (width x
-    height), else to the packing's bounding box, the boundary the tool will draw round it."""
+    the best of them counts. join[k]: edge k joins an L-room's box and arm.
+    `outline_given`: onB is measured to the outline (width x height), else to the packing's
+    bounding box, the boundary the tool will draw round it."""
     n = work.x.shape[0]
     pos_p, pos_q = work.pos_p, work.pos_q
     x, y, w, h = work.x, work.y, work.w, work.h
@@ -98,8 +105,7 @@ def violation(work, edge_a, edge_b, need, join, group_end, on_boundary, width, h
     away = 0.0
     for i in range(n):
         if on_boundary[i]:
-            away += min(min(x[i], y[i]),
-                        min(max(0.0, outer_w - x[i] - w[i]), max(0.0, outer_h - y[i] - h[i])))
+            away += distance_to_outside(x[i], y[i], w[i], h[i], outer_w, outer_h)
     overflow = max(0.0, right - width) + max(0.0, top - height)
     overflow_weight = OVERFLOW_WEIGHT if outline_given else CHOSEN_OVERFLOW_WEIGHT
     return (overflow_weight * overflow + ADJACENCY_WEIGHT * doors + BOUNDARY_WEIGHT * away,

@@ -318,11 +318,12 @@ def outside_shortfall(spec: Spec, away: tuple[tuple[str, float], ...], overflow:
         first = rooms.get(away[0][0].removesuffix(ARM_SUFFIX))
         if first is not None and first.span is not None:
             span, label = first.spans.get("on_boundary", first.span), "must open to the outside"
-    if overflow[0] > 0 or overflow[1] > 0:
+    stuck_out = overflow[0] > 0 or overflow[1] > 0
+    if stuck_out:
         along = " and ".join(f"{metres:g} m along {axis}" for axis, metres in zip("xy", overflow) if metres > 0)
         parts.append(f"stuck out of the boundary by {along}")
     boundary = spec.boundary
-    if parts[-1].startswith("stuck out") and boundary is not None and boundary.w * boundary.h > 0:
+    if stuck_out and boundary is not None and boundary.w * boundary.h > 0:
         # why it stuck out: a boundary the rooms all but fill has room for one arrangement
         target = sum(room.target_w * room.target_h for room in spec.rooms)
         notes.append(f"the rooms' target area fills {100 * target / (boundary.w * boundary.h):.0f} % of the "
@@ -338,7 +339,7 @@ def outside_shortfall(spec: Spec, away: tuple[tuple[str, float], ...], overflow:
         notes=tuple(notes),
         help=("`--grow-boundary` lets the boundary grow (compile reports by how much); for an imported "
               "plan, `layoutdsl import --keep-arrangement` keeps the original's arrangement"
-              if overflow[0] > 0 or overflow[1] > 0 else
+              if stuck_out else
               "a room that opens to the outside needs a wall free of doors: fewer doors, wider size "
               "ranges for it, or `onB` dropped; another `--seed` draws other arrangements"),
     )

@@ -27,6 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numba import njit
 
+from layoutdsl.compile.cost import distance_to_outside
 from layoutdsl.compile.cost import violation as cost_violation
 from layoutdsl.layout.geometry import Rect, RoomSizes
 from layoutdsl.syntax.ast import Spec, arm_id
@@ -345,8 +346,7 @@ class Rooms:
         for i, room_id in enumerate(self.ids):
             if not self.on_boundary[i]:
                 continue
-            x, y, w, h = geometry[room_id]
-            metres = min(x, y, max(0.0, outer_w - x - w), max(0.0, outer_h - y - h))
+            metres = distance_to_outside(*geometry[room_id], outer_w, outer_h)
             if metres > 1e-6:
                 away.append((room_id, round(metres, 2)))
         overflow = ((round(max(0.0, right - self.width), 2), round(max(0.0, top - self.height), 2))

@@ -228,9 +228,10 @@ def seed_arms(spec: Spec, geometry: dict[str, Rect], rng: random.Random, *,
     """The geometry with every L-room's arm joined to its box: at the size the geometry drew
     it, if it did, or at its target size (see arm_sizes), in the orientations its L allows,
     where it overlaps the other boxes, leaves the boundary and misses the L-room's
-    neighbours least, and lies against other rooms most; of equal places, the one nearest where the geometry drew the arm, if it did (the
-    generator draws it as a room of its own, seeds_spec, a wall from its box, maybe turned
-    the way the L forbids); then one drawn from `rng`.
+    neighbours least, and lies against other rooms most; of equal places, the one nearest
+    where the geometry drew the arm, if it did (the generator draws it as a room of its own,
+    seeds_spec, a wall from its box, maybe turned the way the L forbids); then one drawn
+    from `rng`.
 
     Overlap counts as a geometry's rooms meet: in a generated geometry neighbours lie a wall
     apart, so an arm closer than a wall to a room overlaps it; in a hint geometry (`hints`:
@@ -258,8 +259,9 @@ def seed_arms(spec: Spec, geometry: dict[str, Rect], rng: random.Random, *,
         missed = [(seeded[other], wall) for other, wall in walls.get(arm.room, ())
                   if other in seeded and contact_shortfall(room_box, seeded[other], walldim, wall) > 0]
         best = None
+        sizes = _drawn_first(arm_sizes(arm, rooms[arm.room], room_box), drawn)
         for option in JOIN_OPTIONS:
-            for size in _drawn_first(arm_sizes(arm, rooms[arm.room], room_box), drawn):
+            for size in sizes:
                 box = joined_box(room_box, size, option)
                 out = _overlap(box, outside) - _overlap(box, inside)
                 core = (box[0] + allowance, box[1] + allowance, box[2] - 2 * allowance, box[3] - 2 * allowance)
