@@ -46,7 +46,7 @@ def with_corridor_arms(spec: Spec, groups, corridors_needed: int = 1) -> tuple[S
         if armed & set(group):
             continue  # an earlier group's L already covers this one
         corridors = [r for r in group if r in rooms and rooms[r].rtype == "C"]
-        if not corridors or len(corridors) < corridors_needed:
+        if len(corridors) < max(1, corridors_needed):
             continue
         chosen = max(corridors, key=lambda r: (graph.degree(r), -order[r]))
         armed.add(chosen)
