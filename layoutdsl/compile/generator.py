@@ -11,7 +11,8 @@ A spec that keeps its arrangement (`hints`, from `import --keep-arrangement`) is
 the original boxes first. Otherwise, and when that fails, each round of the schedule anneals
 CHAINS sequence-pair states from new spring embeddings of the room graph, with more moves
 than the round before; its best state, when within `repair_max_violation_m` of a layout, is
-packed and handed to the sizing stage, whose relation model meets every door exactly, keeps
+packed and handed to the sizing stage (once: a state it failed on is not sized again), whose
+relation model meets every door exactly, keeps
 every other pair a wall apart and brings the sizes near their targets. After the rounds of
 WORK["turn_after_rounds"], a corridor-like room of each door between two of them that the
 best state still leaves unmet turns a corner (shapes.with_turns): it becomes an L, split
@@ -150,6 +151,10 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
 
     done_rounds = moves = 0
     turned: list[str] = []
+    # states the sizing stage already failed on: a round whose chains all end where they
+    # started (chain 0 starts from the best state) hands the same state back, and its
+    # sizing would fail the same way again (measured: 17 s of cml_synth_121's 48)
+    sized: set[tuple] = set()
 
     def ended(cut_off: bool = False) -> Generated:
         if not best:
@@ -166,7 +171,9 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
         moves += found.moves
         if not best or (found.violation, found.cost) < (best[0].violation, best[0].cost):
             best[:] = [found]
-        if found.violation <= WORK["repair_max_violation_m"]:
+        key = (tuple(turned), b"".join(part.tobytes() for part in found.state))
+        if found.violation <= WORK["repair_max_violation_m"] and key not in sized:
+            sized.add(key)
             geometry = current.rooms.geometry(found.state)
             target = _drawn_round(current.spec, geometry) if soft else current.spec
             rects = _sized(target, geometry, rng, seed, limits)
