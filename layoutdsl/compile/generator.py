@@ -12,8 +12,8 @@ the original boxes first. Otherwise, and when that fails, each round of the sche
 CHAINS sequence-pair states from new spring embeddings of the room graph, with more moves
 than the round before; its best state, when within `repair_max_violation_m` of a layout, is
 packed and handed to the sizing stage (once: a state it failed on is not sized again), whose
-relation model meets every door exactly, keeps
-every other pair a wall apart and brings the sizes near their targets. After the rounds of
+relation model meets every door exactly, keeps every other pair a wall apart and brings the
+sizes near their targets. After the rounds of
 WORK["turn_after_rounds"], a corridor-like room of each door between two of them that the
 best state still leaves unmet turns a corner (shapes.with_turns): it becomes an L, split
 where it lies, and the rounds go on from there. The first rectangles that pass
