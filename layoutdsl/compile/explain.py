@@ -283,6 +283,46 @@ def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: i
     )
 
 
+I911 = register(
+    "I911",
+    Severity.INFO,
+    "four-joined-pairwise-not-placed",
+    "Accompanies E902 when the generator found no layout for a room graph with four rooms "
+    "joined pairwise (a K4) one of which is L-shaped: names the four and their L-rooms, at "
+    "the first of their adjacency lines.",
+    "Four rooms joined pairwise draw only one way: three meet around a point and an L wraps "
+    "two of them, its arm reaching the third's far side. With corridors round them, few "
+    "arrangements of the whole building have that shape, and the generator's work limits "
+    "ran out before it reached one. Another `--seed` draws other arrangements; an `arms` "
+    "line for a second of the four gives the search more shapes that fit; removing one of "
+    "their six adjacencies makes them drawable with rectangles.",
+    "# compile: C0 drawn as an L-shaped room (four rooms joined pairwise ...)\n"
+    "# error[E902]: no layout found within the time limit\n"
+    "# info[I911]: rooms C0, C1, C2, C4 are joined pairwise: with C0 L-shaped they draw only as "
+    "three around a point and C0 wrapping two of them, and the generator's arrangements did not "
+    "reach it",
+)
+
+
+def four_joined_pairwise(spec: Spec, four: tuple[str, ...], span: Span) -> Diagnostic:
+    """I911: four rooms joined pairwise, at least one an L, that the generator left undrawn."""
+    l_rooms = {arm.room for arm in spec.arms}
+    ls = [room for room in four if room in l_rooms]
+    named = " and ".join(ls)
+    return Diagnostic(
+        code=I911,
+        message=f"rooms {', '.join(four)} are joined pairwise: with {named} L-shaped they draw only as "
+                f"three around a point and {'an L' if len(ls) > 1 else named} wrapping two of them, "
+                "and the generator's arrangements did not reach it",
+        filename=spec.path,
+        span=span,
+        severity=Severity.INFO,
+        label="four rooms joined pairwise",
+        help="another `--seed`; an `arms` line for a second of the four; or one of their six "
+             "adjacencies removed (then rectangles draw them)",
+    )
+
+
 I910 = register(
     "I910",
     Severity.INFO,

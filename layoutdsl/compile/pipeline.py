@@ -98,12 +98,10 @@ def compile_from_start(
     rects_start: dict[str, Rect] | None = dict(start) if start is not None else None
     generated: Generated | None = None
     made_l: list[str] = []
-    k4s: list = []
     if options.strategy == "thesis":
         formulation = THESIS_AS_WRITTEN
         rects_start = None
     elif rects_start is None:
-        k4s = structure.undrawable(spec)  # four rooms joined pairwise, before any is made an L
         spec, made_l = structure.with_l_rooms(spec)
         if made_l and not options.quiet:
             print(f"compile: {', '.join(made_l)} drawn as L-shaped rooms (four rooms joined pairwise "
@@ -134,10 +132,10 @@ def compile_from_start(
                   f"for this arrangement (--grow-boundary)", file=sys.stderr)
     if spec.arms:
         result = _compile_l_rooms(spec, options, rects_start, progress, timings, began, deadline, generated)
-        if result.layout is None and generated is not None and made_l:
-            # the L the generator gave them did not help within its work limits: say which
-            # rooms make the graph hard to draw, and why
-            result = replace(result, diagnostics=result.diagnostics + k4s)
+        if result.layout is None and generated is not None:
+            # four rooms joined pairwise that an L makes drawable, yet the generator did not
+            # draw: say which rooms make the graph hard to draw, and why
+            result = replace(result, diagnostics=result.diagnostics + structure.not_placed(spec))
         return _with_closest_arrangement(result, spec, generated)
     # a verified start polished with nothing searched after: the model needs only the
     # separations of the start's relations (model.settle_separations, in _polish_start)

@@ -27,7 +27,7 @@ from itertools import combinations
 
 import networkx as nx
 
-from layoutdsl.compile.explain import E908
+from layoutdsl.compile.explain import E908, four_joined_pairwise
 from layoutdsl.compile.graph import room_graph
 from layoutdsl.compile.shapes import with_corridor_arms
 from layoutdsl.diagnostics import Diagnostic
@@ -64,6 +64,14 @@ def rectangle_k4s(graph: nx.Graph, l_rooms: set[str]) -> list[tuple[str, ...]]:
             if not l_rooms & set(four):
                 found.add(four)
     return sorted(found, key=lambda four: [order[r] for r in four])
+
+
+def not_placed(spec: Spec) -> list[Diagnostic]:
+    """An I911 note for every four rooms joined pairwise with an L among them: said when the
+    generator found no layout for such a graph (E908 is for four that must be rectangles)."""
+    l_rooms = {arm.room for arm in spec.arms}
+    fours = [four for four in rectangle_k4s(room_graph(spec), set()) if l_rooms & set(four)]
+    return [four_joined_pairwise(spec, four, _adjacency_span(spec, list(four))) for four in fours]
 
 
 def _k4_diagnostic(spec: Spec, four: tuple[str, ...]) -> Diagnostic:
