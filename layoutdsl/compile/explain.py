@@ -304,25 +304,6 @@ I911 = register(
 )
 
 
-def four_joined_pairwise(spec: Spec, four: tuple[str, ...], span: Span) -> Diagnostic:
-    """I911: four rooms joined pairwise, at least one an L, that the generator left undrawn."""
-    l_rooms = {arm.room for arm in spec.arms}
-    ls = [room for room in four if room in l_rooms]
-    named = " and ".join(ls)
-    return Diagnostic(
-        code=I911,
-        message=f"rooms {', '.join(four)} are joined pairwise: with {named} L-shaped they draw only as "
-                f"three around a point and {'an L' if len(ls) > 1 else named} wrapping two of them, "
-                "and the generator's arrangements did not reach it",
-        filename=spec.path,
-        span=span,
-        severity=Severity.INFO,
-        label="four rooms joined pairwise",
-        help="another `--seed`; an `arms` line for a second of the four; or one of their six "
-             "adjacencies removed (then rectangles draw them)",
-    )
-
-
 I910 = register(
     "I910",
     Severity.INFO,

@@ -27,10 +27,10 @@ from itertools import combinations
 
 import networkx as nx
 
-from layoutdsl.compile.explain import E908, four_joined_pairwise
+from layoutdsl.compile.explain import E908, I911
 from layoutdsl.compile.graph import room_graph
 from layoutdsl.compile.shapes import with_corridor_arms
-from layoutdsl.diagnostics import Diagnostic
+from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.diagnostics.source import Span
 from layoutdsl.syntax.ast import Spec
 
@@ -71,7 +71,7 @@ def not_placed(spec: Spec) -> list[Diagnostic]:
     generator found no layout for such a graph (E908 is for four that must be rectangles)."""
     l_rooms = {arm.room for arm in spec.arms}
     fours = [four for four in rectangle_k4s(room_graph(spec), set()) if l_rooms & set(four)]
-    return [four_joined_pairwise(spec, four, _adjacency_span(spec, list(four))) for four in fours]
+    return [_not_placed_diagnostic(spec, four, l_rooms) for four in fours]
 
 
 def _k4_diagnostic(spec: Spec, four: tuple[str, ...]) -> Diagnostic:
@@ -82,6 +82,20 @@ def _k4_diagnostic(spec: Spec, four: tuple[str, ...]) -> Diagnostic:
         label="four rooms joined pairwise",
         help=f"give one of them an L shape (an `arms` line, e.g. `{four[0]} ...` for a corridor), "
              "or remove one of their six adjacencies")
+
+
+def _not_placed_diagnostic(spec: Spec, four: tuple[str, ...], l_rooms: set[str]) -> Diagnostic:
+    ls = [room for room in four if room in l_rooms]
+    named = " and ".join(ls)
+    return Diagnostic(
+        code=I911,
+        message=f"rooms {', '.join(four)} are joined pairwise: with {named} L-shaped they draw only as "
+                f"three around a point and {'an L' if len(ls) > 1 else named} wrapping two of them, "
+                "and the generator's arrangements did not reach it",
+        filename=spec.path, span=_adjacency_span(spec, list(four)), severity=Severity.INFO,
+        label="four rooms joined pairwise",
+        help="another `--seed`; an `arms` line for a second of the four; or one of their six "
+             "adjacencies removed (then rectangles draw them)")
 
 
 def _adjacency_span(spec: Spec, rooms: list[str]) -> Span:
