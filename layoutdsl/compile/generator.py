@@ -211,7 +211,8 @@ class _Searched:
     @staticmethod
     def of(spec: Spec, drawn: Spec, outline: tuple[float, float], soft: bool) -> _Searched:
         sides = initial.drawn_sides(drawn, outline, shrink=1.0 if soft else None)
-        return _Searched(spec, drawn, Rooms.of(drawn, sides, outline, outline_given=not soft))
+        return _Searched(spec, drawn, Rooms.of(drawn, sides, outline, outline_given=not soft,
+                                               crossings=lshape.crossings(spec)))
 
 
 def _sized(spec: Spec, geometry: dict[str, Rect], rng: random.Random, seed: int,

@@ -79,11 +79,12 @@ def drift(i, long_side, short_side, drawn_long, drawn_short):
 
 @njit(cache=True)
 def propose(p, q, turned, long_side, short_side, new_p, new_q, new_turned, spare_long, spare_short,
-            bounds, edge_a, edge_b, per_edge):
+            bounds, edge_a, edge_b, per_edge, partner):
     """One random move (numba's generator, seeded by the schedule) into new_p, new_q,
     new_turned (copies of p, q, turned on entry) or, for a resize, into spare_long and
     spare_short: returns the resized room, or -1 for any other move. per_edge (each door's
-    violation, cost.violation) steers `beside` towards unmet doors."""
+    violation, cost.violation) steers `beside` towards unmet doors. A room turned turns its
+    partner too (representation.Rooms.partner: the two rectangles of an L turn together)."""
     n = p.shape[0]
     m = edge_a.shape[0]
     kind = np.random.random()
@@ -109,7 +110,7 @@ def propose(p, q, turned, long_side, short_side, new_p, new_q, new_turned, spare
         _move_beside(p, b, a, side == 0 or side == 3, new_p)
         _move_beside(q, b, a, side == 0 or side == 2, new_q)
         if np.random.random() < TURN_BESIDE:
-            new_turned[b] = not new_turned[b]
+            _turn(b, new_turned, partner)
     elif kind < SWAP_P_UP_TO:
         i = np.random.randint(n)
         j = np.random.randint(n)
@@ -131,6 +132,13 @@ def propose(p, q, turned, long_side, short_side, new_p, new_q, new_turned, spare
             elif new_q[k] == b:
                 new_q[k] = a
     else:
-        i = np.random.randint(n)
-        new_turned[i] = not new_turned[i]
+        _turn(np.random.randint(n), new_turned, partner)
     return -1
+
+
+@njit(cache=True, inline="always")
+def _turn(i, turned, partner):
+    """Room i turned a quarter, with the other rectangle of its L if it has one."""
+    turned[i] = not turned[i]
+    if partner[i] >= 0:
+        turned[partner[i]] = not turned[partner[i]]

@@ -77,7 +77,7 @@ def run_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, cancel: 
     give_up_step = int(GIVE_UP_AT * moves)
     return _chain(rooms.target_long, rooms.target_short, rooms.bounds, rooms.edge_a, rooms.edge_b,
                   rooms.need, rooms.join, rooms.group_end, rooms.door_ptr, rooms.door_to, rooms.on_boundary, rooms.width,
-                  rooms.height, rooms.wall, rooms.outline_given, kernel_seed, moves,
+                  rooms.height, rooms.wall, rooms.outline_given, rooms.partner, kernel_seed, moves,
                   START_TEMPERATURE * scale, END_TEMPERATURE * scale, give_up_step, GIVE_UP_M,
                   cancel, *start)
 
@@ -127,7 +127,7 @@ def _cancel_at(deadline: float | None, cancel: np.ndarray) -> threading.Timer | 
 
 @njit(cache=True, nogil=True)
 def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, join, group_end, door_ptr, door_to, on_boundary,
-           width, height, wall, outline_given, seed, moves, t_start, t_end, give_up_step, give_up_m,
+           width, height, wall, outline_given, partner, seed, moves, t_start, t_end, give_up_step, give_up_m,
            cancel, start_p, start_q, start_turned, start_long, start_short):
     np.random.seed(seed)
     n = drawn_long.shape[0]
@@ -170,7 +170,7 @@ def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, join, group_en
         new_short = short_side
         new_resized = resized
         resized_room = propose(p, q, turned, long_side, short_side, new_p, new_q, new_turned, spare_long,
-                                spare_short, bounds, edge_a, edge_b, per_edge)
+                                spare_short, bounds, edge_a, edge_b, per_edge, partner)
         resizing = resized_room >= 0
         if resizing:
             new_long = spare_long

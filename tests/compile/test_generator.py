@@ -229,3 +229,41 @@ def test_an_l_rooms_arm_met_along_the_middle_of_its_box_is_not_yet_a_layout():
     rooms_tall = Rooms.of(drawn_tall, sides_tall, (30.0, 30.0), outline_given=True)
     assert not [door for door in rooms_tall.unmet_doors(rooms_tall.state_of(flush)) if door[1] == arm_id("C0")]
     assert np.array_equal(rooms_tall.join, rooms.join)
+
+
+def test_an_l_rooms_arm_turns_with_its_box_so_a_packing_keeps_the_l_shape():
+    """The sizing stage joins an L's arm to its box in the shape the L has (an arm across
+    its box stays across it); so every state the annealer packs has it so: an arm read off
+    a geometry turned the other way is turned back, and a move that turns the box turns the
+    arm too."""
+    import numpy as np
+
+    from layoutdsl.compile.moves import propose
+    from layoutdsl.compile.representation import Rooms
+    from layoutdsl.layout import lshape
+    from layoutdsl.syntax.ast import Arm, arm_id
+
+    box = room("C0", 10.0, 2.0, rtype="C", var=0.0)  # wide
+    spec = Spec("t", (box, room("R0", 4.0, 4.0, var=0.0)), Boundary(30.0, 30.0), (adjacent("C0", "R0"),),
+                arms=(Arm("C0", 2.0, 2.0, 2.0, 5.0, 5.0, 5.0, 1.0, 3.0),))  # tall: across the box
+    assert lshape.crossings(spec) == {("C0", arm_id("C0")): True}
+    drawn = lshape.seeds_spec(spec)
+    sides = {r.id: (max(r.target_w, r.target_h), min(r.target_w, r.target_h)) for r in drawn.rooms}
+    rooms = Rooms.of(drawn, sides, (30.0, 30.0), outline_given=True, crossings=lshape.crossings(spec))
+    c0, arm, r0 = (rooms.ids.index(i) for i in ("C0", arm_id("C0"), "R0"))
+    assert (rooms.partner[c0], rooms.partner[arm], rooms.partner[r0]) == (arm, c0, -1)
+    # the arm drawn wide beside the wide box (a straight corridor, not this L)
+    along = {"C0": (0.0, 0.0, 10.0, 2.0), arm_id("C0"): (10.2, 0.0, 5.0, 2.0), "R0": (0.0, 2.2, 4.0, 4.0)}
+    state = rooms.state_of(along)
+    assert not state[2][c0] and state[2][arm]
+    x, y, w, h = rooms.geometry(state)[arm_id("C0")]
+    assert h > w
+    # every turn move turns both rectangles of the L or neither
+    np.random.seed(0)
+    p, q, turned, long_side, short_side = state
+    per_edge = np.ones(rooms.edge_a.shape[0])
+    for _ in range(300):
+        new_p, new_q, new_turned = p.copy(), q.copy(), turned.copy()
+        propose(p, q, turned, long_side, short_side, new_p, new_q, new_turned, long_side.copy(),
+                short_side.copy(), rooms.bounds, rooms.edge_a, rooms.edge_b, per_edge, rooms.partner)
+        assert new_turned[arm] != new_turned[c0]
