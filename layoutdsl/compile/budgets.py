@@ -20,7 +20,7 @@ WORK = {
     "zero_stop": 0.3,            # a chain at violation 0 stops after this share of its moves
     "give_up_at": 0.6,           # a chain still more than give_up_m from a layout at this
     "give_up_m": 5.0,            #   share of its moves stops there
-    "turn_after_rounds": (3,),   # after these rounds (0-based) a corridor of each unmet corridor-corridor
+    "turn_after_rounds": (1,),   # after these rounds (0-based) a corridor of each unmet corridor-corridor
                                  #   door turns a corner (shapes.with_turns)
     # the sizing stage (layoutdsl.solve.relations): a round's MIP stops after this many nodes
     "repair_round_nodes": 200,
