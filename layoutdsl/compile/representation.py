@@ -257,17 +257,17 @@ class Rooms:
     height: float
     wall: float
     outline_given: bool
-    doors: tuple[tuple[str, str], ...] = ()
-    """The spec's two rooms of each door (group), in group order."""
-    partner: np.ndarray | None = None
+    partner: np.ndarray
     """Per room: the other rectangle of its L (an L-room's box and arm are packed as two
     rooms) when the L fixes how the two are turned against each other, else -1. Every state
     keeps them so (`state_of`; moves.propose turns both): the sizing stage joins the arm to
     its box in the shape the L has (Arm.crosses), and an arm packed turned the other way is
     moved there, away from the doors the packing met (measured on office_floorplanMAIN,
     seed 0: a violation of 0 left 20 m of stretch to the sizing stage, 21 s)."""
-    crosses: np.ndarray | None = None
+    crosses: np.ndarray
     """Per room with a partner: the arm runs across its box (turned unlike it)."""
+    doors: tuple[tuple[str, str], ...] = ()
+    """The spec's two rooms of each door (group), in group order."""
 
     @classmethod
     def of(cls, spec: Spec, sides: dict[str, tuple[float, float]], outline: tuple[float, float],
@@ -315,7 +315,7 @@ class Rooms:
             door_ptr=door_ptr, door_to=door_to,
             on_boundary=np.array([room.on_boundary for room in spec.rooms], dtype=np.bool_),
             width=float(outline[0]), height=float(outline[1]), wall=spec.settings.walldim,
-            outline_given=outline_given, doors=tuple(door_rooms), partner=partner, crosses=crosses)
+            outline_given=outline_given, partner=partner, crosses=crosses, doors=tuple(door_rooms))
 
     def state_of(self, geometry: Mapping[str, Rect]) -> State:
         """The state of a geometry whose rectangles may overlap: P by x - y of the centres,
@@ -331,13 +331,10 @@ class Rooms:
         long_side = np.clip(np.maximum(w, h), self.bounds[:, 0], self.bounds[:, 1])
         short_side = np.minimum(np.clip(np.minimum(w, h), self.bounds[:, 2], self.bounds[:, 3]), long_side)
         turned = h > w
-        if self.partner is not None:
-            # an L's arm turned as its shape says against its box (the box, the larger, keeps
-            # its way)
-            for i in range(len(ids)):
-                box = self.partner[i]
-                if box >= 0 and self.partner[box] == i and ids[i].endswith(ARM_SUFFIX):
-                    turned[i] = turned[box] != self.crosses[i]
+        # an L's arm turned as its shape says against its box (the box, the larger, keeps its way)
+        for i in range(len(ids)):
+            if self.partner[i] >= 0 and ids[i].endswith(ARM_SUFFIX):
+                turned[i] = turned[self.partner[i]] != self.crosses[i]
         return p, q, turned, long_side, short_side
 
     def unmet_doors(self, state: State) -> list[tuple[str, str, float]]:
