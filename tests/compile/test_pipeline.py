@@ -207,6 +207,27 @@ def test_a_39_room_planted_start_is_polished_and_verified():
     assert result.layout.solve.objective < objective_of_rects(big, rects, formulation=COVER_EVERYWHERE) - 0.5
 
 
+def test_with_search_off_the_polish_may_use_all_the_time_left(monkeypatch):
+    # nothing follows the polish of a variant (search off), so only its node limit may stop
+    # it: a share of the clock would stop a loaded machine earlier than an idle one
+    # (school_Neulengbach1 seed 1 was cut at its 10 % share under load only)
+    import layoutdsl.compile.pipeline as pipeline
+
+    granted: dict[bool, float] = {}
+    real_polish = pipeline.polish
+
+    def spying(model, options, **kwargs):
+        granted.setdefault(search, options.time_limit)
+        return real_polish(model, options, **kwargs)
+
+    monkeypatch.setattr(pipeline, "polish", spying)
+    for search in (False, True):
+        result = compile_spec(FIVE, SolveOptions(time_limit=100, quiet=True, search=search), start=FIVE_RECTS)
+        assert result.layout is not None, result.diagnostics
+    assert granted[False] > 90.0
+    assert granted[True] <= 10.0 + 1e-9
+
+
 def test_neighbourhood_search_improves_a_start_and_depends_only_on_the_seed():
     import time
 
