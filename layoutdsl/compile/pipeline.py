@@ -45,7 +45,7 @@ from layoutdsl.solve import (
 from layoutdsl.layout.geometry import Rect
 from layoutdsl.layout.verify import verify
 from layoutdsl.solve.isolated import SOLVER_CRASHED, solve_isolated
-from layoutdsl.solve.relations import without_slivers
+from layoutdsl.solve.relations import compacted, without_slivers
 from layoutdsl.layout.realism import USABLE_WIDTH
 
 StartProvider = Callable[[Spec, SolveOptions], "Generated | dict[str, Rect] | None"]
@@ -425,16 +425,26 @@ def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dic
         else:
             best, best_rects = (objective, layout, status), rects
     if best is not None and best_rects is not None and options.strategy != "thesis":
-        # a gap between two rooms is a wall or a space, never a sliver (issue 40): the
-        # best layout's relations, sized again with each sliver shut or opened
-        cleared = without_slivers(spec, best_rects, usable_width=USABLE_WIDTH, seed=options.seed,
-                                  nodes=WORK["final_nodes"],
-                                  deadline=time.monotonic() + TIME["slivers"] * options.time_limit)
-        if cleared is not None:
-            objective = objective_of_rects(model_spec or spec, cleared, formulation=formulation)
-            layout = checked_layout(cleared, best[2], objective)
+        # realism the layout guarantees (issue 40), each pass with the best layout's relations
+        # fixed: a gap between two rooms is a wall or a space, never a sliver; then no
+        # enclosed voids a real building would not have, the rooms around each pulled
+        # together and grown into it (slivers that this opens are shut or opened again)
+        passes = (
+            lambda rects: without_slivers(spec, rects, usable_width=USABLE_WIDTH, seed=options.seed,
+                                          nodes=WORK["final_nodes"],
+                                          deadline=time.monotonic() + TIME["slivers"] * options.time_limit),
+            lambda rects: compacted(spec, rects, usable_width=USABLE_WIDTH, seed=options.seed,
+                                    nodes=WORK["final_nodes"],
+                                    deadline=time.monotonic() + TIME["compact"] * options.time_limit),
+        )
+        for realism_pass in passes:
+            changed = realism_pass(best_rects)
+            if changed is None:
+                continue
+            objective = objective_of_rects(model_spec or spec, changed, formulation=formulation)
+            layout = checked_layout(changed, best[2], objective)
             if not verify(spec, layout):
-                best = (objective, layout, best[2])
+                best, best_rects = (objective, layout, best[2]), changed
     return best, failures
 
 

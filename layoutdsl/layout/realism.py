@@ -141,17 +141,7 @@ def measure_spaces(spaces: Sequence[Space], *, walldim: float = 0.2, min_gap: fl
         return Realism({}, (), 0.0, 0.0, (), ())
     grid = _Raster.of(spaces, resolution, margin=2 * min_gap + 4 * resolution)
     occupied = grid.ids >= 0
-    probe = max(1, math.ceil(min_gap / grid.res - 1e-9))
-    free = ~occupied
-    # where a min_gap square fits entirely in free space (anchored at its lower-left cell)
-    fits = _erode_square(free, probe)
-    labels, _ = ndimage.label(fits)
-    border = np.unique(np.concatenate([labels[0, :], labels[-1, :], labels[:, 0], labels[:, -1]]))
-    border = border[border > 0]
-    outside_anchor = np.isin(labels, border)
-    outside = _dilate_square(outside_anchor, probe)
-    enclosed_anchor = fits & ~outside_anchor
-    enclosed = _dilate_square(enclosed_anchor, probe) & ~outside
+    outside, enclosed = _outside_and_enclosed(occupied, grid.res, min_gap)
     # a room cell borders the outside when its 4-neighbour across the room's edge is outside;
     # each such cell edge is `res` metres of outline
     lengths = np.zeros(len(spaces))
@@ -180,6 +170,37 @@ def measure_spaces(spaces: Sequence[Space], *, walldim: float = 0.2, min_gap: fl
         slivers=find_slivers(spaces, walldim, usable_width) if all_boxes else None,
         min_opening=min_opening,
     )
+
+
+def _outside_and_enclosed(occupied: np.ndarray, res: float, min_gap: float) -> tuple[np.ndarray, np.ndarray]:
+    """(outside, enclosed) cell masks: free space the outside reaches through openings at
+    least min_gap wide, and free space at least min_gap wide that it does not reach."""
+    probe = max(1, math.ceil(min_gap / res - 1e-9))
+    free = ~occupied
+    # where a min_gap square fits entirely in free space (anchored at its lower-left cell)
+    fits = _erode_square(free, probe)
+    labels, _ = ndimage.label(fits)
+    border = np.unique(np.concatenate([labels[0, :], labels[-1, :], labels[:, 0], labels[:, -1]]))
+    border = border[border > 0]
+    outside_anchor = np.isin(labels, border)
+    outside = _dilate_square(outside_anchor, probe)
+    enclosed_anchor = fits & ~outside_anchor
+    return outside, _dilate_square(enclosed_anchor, probe) & ~outside
+
+
+def enclosed_at(spaces: Sequence[Space], points: Sequence[Point], *, min_gap: float = MIN_GAP,
+                resolution: float = RESOLUTION) -> list[bool]:
+    """For each point: does it lie in an enclosed void of the spaces (measure_spaces)?"""
+    if not spaces:
+        return [False] * len(points)
+    grid = _Raster.of(spaces, resolution, margin=2 * min_gap + 4 * resolution)
+    _outside, enclosed = _outside_and_enclosed(grid.ids >= 0, grid.res, min_gap)
+    rows, cols = enclosed.shape
+    found = []
+    for px, py in points:
+        col, row = int((px - grid.x0) // grid.res), int((py - grid.y0) // grid.res)
+        found.append(bool(0 <= row < rows and 0 <= col < cols and enclosed[row, col]))
+    return found
 
 
 def find_slivers(spaces: Sequence[Space], walldim: float, usable_width: float = USABLE_WIDTH,
