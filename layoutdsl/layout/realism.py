@@ -188,18 +188,22 @@ def _outside_and_enclosed(occupied: np.ndarray, res: float, min_gap: float) -> t
     return outside, _dilate_square(enclosed_anchor, probe) & ~outside
 
 
-def enclosed_at(spaces: Sequence[Space], points: Sequence[Point], *, min_gap: float = MIN_GAP,
-                resolution: float = RESOLUTION) -> list[bool]:
-    """For each point: does it lie in an enclosed void of the spaces (measure_spaces)?"""
+def voids_at(spaces: Sequence[Space], points: Sequence[Point], *, min_gap: float = MIN_GAP,
+             resolution: float = RESOLUTION) -> list[tuple[int, float]]:
+    """For each point, the enclosed void of the spaces (measure_spaces) it lies in: (a
+    number for the void, 1 and up, and its area in m²), or (0, 0.0) outside every void."""
     if not spaces:
-        return [False] * len(points)
+        return [(0, 0.0)] * len(points)
     grid = _Raster.of(spaces, resolution, margin=2 * min_gap + 4 * resolution)
     _outside, enclosed = _outside_and_enclosed(grid.ids >= 0, grid.res, min_gap)
-    rows, cols = enclosed.shape
+    labels, _count = ndimage.label(enclosed)
+    areas = np.bincount(labels.ravel()) * grid.res**2
+    rows, cols = labels.shape
     found = []
     for px, py in points:
         col, row = int((px - grid.x0) // grid.res), int((py - grid.y0) // grid.res)
-        found.append(bool(0 <= row < rows and 0 <= col < cols and enclosed[row, col]))
+        label = int(labels[row, col]) if 0 <= row < rows and 0 <= col < cols else 0
+        found.append((label, float(areas[label]) if label else 0.0))
     return found
 
 

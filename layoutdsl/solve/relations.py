@@ -1174,8 +1174,9 @@ the rooms more (room area 0.88 -> 0.96 / 0.89 -> 0.94 of the original's)."""
 PULL_RADIUS = 30.0
 """Metres apart beyond which two facing rooms do not pull on each other."""
 
-COMPACT_ROUNDS = 3
-"""Rounds of pulling: a closed void can leave a smaller one between rooms that moved."""
+COMPACT_SOLVES = 6
+"""Solves of compacted at most, each pulling across one more void (or the same one again:
+a closed void can leave a smaller one between rooms that moved)."""
 
 
 def compacted(spec: Spec, rects: dict[str, Rect], *, usable_width: float, deadline: float, nodes: int,
@@ -1184,7 +1185,7 @@ def compacted(spec: Spec, rects: dict[str, Rect], *, usable_width: float, deadli
     together as far as the relations allow (linear programs: the relations fixed, no room
     smaller than its rectangle); None when that leaves no less void. A sliver that pulling
     opens is shut or opened (without_slivers); where it cannot be, the round is not kept."""
-    from layoutdsl.layout.realism import Space, enclosed_at, facing_gaps, find_slivers, measure_spaces
+    from layoutdsl.layout.realism import Space, facing_gaps, measure_spaces, voids_at
 
     # the sizes the layout has are the least each room keeps: closing a void by shrinking
     # the rooms around it would only trade the void for smaller rooms
@@ -1194,43 +1195,66 @@ def compacted(spec: Spec, rects: dict[str, Rect], *, usable_width: float, deadli
     def spaces_of(current):
         return [Space(room_id, "", "R", ((x, y, x + w, y + h),)) for room_id, (x, y, w, h) in current.items()]
 
-    current = geometry
-    void = measure_spaces(spaces_of(current), walldim=problem.walldim).void_area
-    pulls: dict[Pair, float] = {}
-    for round_index in range(COMPACT_ROUNDS):
-        if void <= 0.0 or deadline - time.monotonic() <= 0.05:
-            break
-        spaces = spaces_of(current)
-        gaps = [gap for gap in facing_gaps(spaces, problem.walldim, PULL_RADIUS)
-                if frozenset((gap.a, gap.b)) not in joined and gap.width > problem.walldim + 1e-3]
-        gaps = [gap for gap in gaps if not _anything_between(current, gap.a, gap.b)]
-        inside = enclosed_at(spaces, [_gap_centre(current[gap.a], current[gap.b]) for gap in gaps])
-        added = {_ordered(problem, gap.a, gap.b): PULL_WEIGHT * gap.length
-                 for gap, enclosed in zip(gaps, inside) if enclosed}
-        _debug(f"  compact round {round_index}: void {void:.1f} m2, {len(added)} of {len(gaps)} facing pairs across one")
-        if not set(added) - set(pulls):
-            break
-        pulls.update(added)
-        outcome = _solve_active(problem, options, mode="final", seconds=max(0.05, deadline - time.monotonic()),
-                                nodes=nodes, seed=seed, orientations=orientations, turnable=frozenset(),
-                                start=None, feasibility_emphasis=False, within=(current, None), pulls=pulls)
-        if outcome is None or max(outcome.stretched.values(), default=0.0) > STRETCH_NOISE_M:
-            break
-        if check_start(problem.checked or problem.spec, outcome.rects):
-            break
-        pulled = outcome.rects
-        if any(frozenset((sliver.a, sliver.b)) not in joined
-               for sliver in find_slivers(spaces_of(pulled), problem.walldim, usable_width)):
-            pulled = without_slivers(spec, pulled, usable_width=usable_width, deadline=deadline, nodes=nodes,
-                                     seed=seed)
-            if pulled is None:
+    def pulled_together(all_first: bool) -> tuple[float, dict[str, Rect]]:
+        current = geometry
+        void = measure_spaces(spaces_of(current), walldim=problem.walldim).void_area
+        pulls: dict[Pair, float] = {}
+        solves = 0
+        while void > 0.0 and solves < COMPACT_SOLVES and deadline - time.monotonic() > 0.05:
+            spaces = spaces_of(current)
+            gaps = [gap for gap in facing_gaps(spaces, problem.walldim, PULL_RADIUS)
+                    if frozenset((gap.a, gap.b)) not in joined and gap.width > problem.walldim + 1e-3
+                    and not _anything_between(current, gap.a, gap.b)]
+            centres = [_gap_centre(current[gap.a], current[gap.b]) for gap in gaps]
+            across: dict[tuple[float, int], dict[Pair, float]] = {}
+            for gap, (label, area) in zip(gaps, voids_at(spaces, centres)):
+                if label:
+                    across.setdefault((-area, label), {})[_ordered(problem, gap.a, gap.b)] = PULL_WEIGHT * gap.length
+            every = {pair: weight for key in sorted(across) for pair, weight in across[key].items()}
+            each = [across[key] for key in sorted(across)] if len(across) > 1 else []
+            kept = False
+            for added in ([every] + each) if all_first else (each + [every]):
+                if not set(added) - set(pulls) or solves >= COMPACT_SOLVES:
+                    continue
+                solves += 1
+                pulled = _pulled(problem, options, orientations, {**pulls, **added}, current, spec, spaces_of,
+                                 joined, usable_width, deadline, nodes, seed)
+                after = None if pulled is None else measure_spaces(spaces_of(pulled), walldim=problem.walldim).void_area
+                _debug(f"  compact: void {void:.1f} -> {after} m2 ({len(added)} pairs pulled)")
+                if after is not None and after < void - 1e-9:
+                    pulls.update(added)
+                    current, void, kept = pulled, after, True
+                    break
+            if not kept:
                 break
-        after = measure_spaces(spaces_of(pulled), walldim=problem.walldim).void_area
-        _debug(f"  compact: void {void:.1f} -> {after:.1f} m2")
-        if after >= void - 1e-9:
-            break
-        current, void = pulled, after
+        return void, current
+
+    # pulling on the pairs across every void at once can close one void's mouth while
+    # another shrinks, and pulling across one void at a time (the largest first) can stop
+    # short: both are tried, and the one that leaves less void is kept
+    void, current = min((pulled_together(all_first) for all_first in (True, False)), key=lambda found: found[0])
     return None if current is geometry else current
+
+
+def _pulled(problem: _Problem, options, orientations, pulls: dict[Pair, float], current: dict[str, Rect],
+            spec: Spec, spaces_of, joined, usable_width: float, deadline: float, nodes: int,
+            seed: int) -> dict[str, Rect] | None:
+    """One solve of compacted: the rectangles with `pulls` on, verified and without slivers
+    (None when the relations do not allow it)."""
+    from layoutdsl.layout.realism import find_slivers
+
+    outcome = _solve_active(problem, options, mode="final", seconds=max(0.05, deadline - time.monotonic()),
+                            nodes=nodes, seed=seed, orientations=orientations, turnable=frozenset(),
+                            start=None, feasibility_emphasis=False, within=(current, None), pulls=pulls)
+    if outcome is None or max(outcome.stretched.values(), default=0.0) > STRETCH_NOISE_M:
+        return None
+    if check_start(problem.checked or problem.spec, outcome.rects):
+        return None
+    pulled = outcome.rects
+    if any(frozenset((sliver.a, sliver.b)) not in joined
+           for sliver in find_slivers(spaces_of(pulled), problem.walldim, usable_width)):
+        pulled = without_slivers(spec, pulled, usable_width=usable_width, deadline=deadline, nodes=nodes, seed=seed)
+    return pulled
 
 
 def _gap_between(a: Rect, b: Rect) -> Rect:
