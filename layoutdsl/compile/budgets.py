@@ -38,8 +38,8 @@ TIME = {
     "generate": 0.8,   # share of the time limit the generator may use before it is cut off
     "probe": 0.05,     # SCIP's presolve-only infeasibility probe (at most 5 s)
     "polish": 0.1,     # polishing the generated layout with its relations fixed (solve.polish)
-    "compact": 0.1,    # the best layout's enclosed voids closed (solve.relations.compacted)
-    "slivers": 0.1,    # the best layout's slivers shut or opened (solve.relations.without_slivers)
+    "compact": 0.1,    # at least, the best layout's enclosed voids closed (solve.relations.compacted),
+    "slivers": 0.1,    # and its slivers shut or opened (without_slivers): both may run to the deadline
     "lns": {True: 0.7, False: 0.9},  # share of what is left for neighbourhood search, for
                                      # specs of at most / more than LNS_SMALL rooms
 }

@@ -260,3 +260,24 @@ def test_compile_command_writes_numbered_variants(tmp_path):
     # NAME-vK, the scheme batch names its buildings by (issue 42: one naming scheme)
     assert names == ["office-v1.layout.json", "office-v1.xml", "office-v2.layout.json", "office-v2.xml",
                      "office-variants.json"]
+
+
+def test_the_realism_passes_may_run_to_the_compile_s_deadline(monkeypatch):
+    # the sliver and void passes stop at their work limits; a 10 % share of the clock cut the
+    # void pass short on a loaded machine only (school_Neulengbach1 seed 0)
+    import time
+
+    import layoutdsl.compile.pipeline as pipeline
+
+    left: dict[str, float] = {}
+    for name in ("compacted", "without_slivers"):
+        real = getattr(pipeline, name)
+
+        def spying(*args, _real=real, _name=name, deadline, **kwargs):
+            left.setdefault(_name, deadline - time.monotonic())
+            return _real(*args, deadline=deadline, **kwargs)
+
+        monkeypatch.setattr(pipeline, name, spying)
+    result = compile_spec(FIVE, SolveOptions(time_limit=100, quiet=True, search=False), start=FIVE_RECTS)
+    assert result.layout is not None, result.diagnostics
+    assert left["compacted"] > 90.0 and left["without_slivers"] > 90.0
