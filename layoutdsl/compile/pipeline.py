@@ -428,8 +428,8 @@ def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dic
         # realism the layout guarantees (issue 40), each pass with the best layout's relations
         # fixed: a gap between two rooms is a wall or a space, never a sliver; then no
         # enclosed voids a real building would not have, the rooms around each pulled
-        # together and grown into it (slivers that this opens are shut or opened again)
-        # each pass may run to the compile's own deadline (at least its share of the time
+        # together and grown into it (slivers that this opens are shut or opened again).
+        # Each pass may run to the compile's own deadline (at least its share of the time
         # limit): their work limits, not a share of the clock, decide where they stop, so a
         # variant on a loaded machine gets the layout an idle one does (a 10 % share cut the
         # void pass short under load: school_Neulengbach1 seed 0, school_hendersonhighschool

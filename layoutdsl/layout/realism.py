@@ -188,6 +188,16 @@ def _outside_and_enclosed(occupied: np.ndarray, res: float, min_gap: float) -> t
     return outside, _dilate_square(enclosed_anchor, probe) & ~outside
 
 
+def void_area(spaces: Sequence[Space], *, min_gap: float = MIN_GAP, resolution: float = RESOLUTION) -> float:
+    """m² of enclosed voids among the spaces: measure_spaces' void_area alone, without its
+    outside lengths and slivers."""
+    if not spaces:
+        return 0.0
+    grid = _Raster.of(spaces, resolution, margin=2 * min_gap + 4 * resolution)
+    _outside, enclosed = _outside_and_enclosed(grid.ids >= 0, grid.res, min_gap)
+    return float(enclosed.sum() * grid.res**2)
+
+
 def voids_at(spaces: Sequence[Space], points: Sequence[Point], *, min_gap: float = MIN_GAP,
              resolution: float = RESOLUTION) -> list[tuple[int, float]]:
     """For each point, the enclosed void of the spaces (measure_spaces) it lies in: (a

@@ -1065,7 +1065,7 @@ def without_slivers(spec: Spec, rects: dict[str, Rect], *, usable_width: float, 
     other across a sliver gets one binary: shut to a wall, or open to usable width. Closing
     one sliver can open another between rooms that moved, so the pairs add up over rounds.
     """
-    from layoutdsl.layout.realism import Space, facing_gaps, find_slivers
+    from layoutdsl.layout.realism import facing_gaps, find_slivers
 
     # the sizes the layout has are the targets: whatever chose them (the thesis' objective,
     # polished by SCIP) keeps its say, and rooms move and resize only as the gaps need
@@ -1075,7 +1075,7 @@ def without_slivers(spec: Spec, rects: dict[str, Rect], *, usable_width: float, 
     gaps: dict[Pair, float] = {}
     current = geometry
     for round_index in range(SLIVER_ROUNDS + 1):
-        spaces = [Space(room_id, "", "R", ((x, y, x + w, y + h),)) for room_id, (x, y, w, h) in current.items()]
+        spaces = _box_spaces(current)
         found = [sliver for sliver in find_slivers(spaces, problem.walldim, usable_width)
                  if frozenset((sliver.a, sliver.b)) not in joined]
         if not found:
@@ -1091,15 +1091,35 @@ def without_slivers(spec: Spec, rects: dict[str, Rect], *, usable_width: float, 
             gaps[_ordered(problem, sliver.a, sliver.b)] = usable_width
         if deadline - time.monotonic() <= 0.05:
             return None
-        outcome = _solve_active(problem, options, mode="final", seconds=deadline - time.monotonic(),
-                                nodes=nodes, seed=seed, orientations=orientations, turnable=frozenset(),
-                                start=None, feasibility_emphasis=False, within=(current, None), gaps=gaps)
-        if outcome is None or max(outcome.stretched.values(), default=0.0) > STRETCH_NOISE_M:
+        current = _sized_again(problem, options, orientations, current, deadline=deadline, nodes=nodes, seed=seed,
+                               gaps=gaps)
+        if current is None:
             return None
-        if check_start(problem.checked or problem.spec, outcome.rects):
-            return None
-        current = outcome.rects
     return None
+
+
+def _sized_again(problem: _Problem, options: dict[Pair, tuple[str, ...]], orientations: dict[str, bool],
+                 current: dict[str, Rect], *, deadline: float, nodes: int, seed: int,
+                 gaps: dict[Pair, float] | None = None,
+                 pulls: dict[Pair, float] | None = None) -> dict[str, Rect] | None:
+    """One final-mode solve of a layout's relations fixed (_relations_fixed), with `gaps` or
+    `pulls` (_solve_active); None unless it needs no stretch and its rectangles pass
+    check_start against the spec the problem is checked against."""
+    outcome = _solve_active(problem, options, mode="final", seconds=max(0.05, deadline - time.monotonic()),
+                            nodes=nodes, seed=seed, orientations=orientations, turnable=frozenset(),
+                            start=None, feasibility_emphasis=False, within=(current, None), gaps=gaps, pulls=pulls)
+    if outcome is None or max(outcome.stretched.values(), default=0.0) > STRETCH_NOISE_M:
+        return None
+    if check_start(problem.checked or problem.spec, outcome.rects):
+        return None
+    return outcome.rects
+
+
+def _box_spaces(rects: dict[str, Rect]) -> list:
+    """The rectangles as layout.realism spaces (one box each, id = the rectangle's)."""
+    from layoutdsl.layout.realism import Space
+
+    return [Space(room_id, "", "R", ((x, y, x + w, y + h),)) for room_id, (x, y, w, h) in rects.items()]
 
 
 def _relations_fixed(spec: Spec, rects: dict[str, Rect], anchor: Callable[[Room, Rect], Room]):
@@ -1183,23 +1203,20 @@ def compacted(spec: Spec, rects: dict[str, Rect], *, usable_width: float, deadli
     together as far as the relations allow (linear programs: the relations fixed, no room
     smaller than its rectangle); None when that leaves no less void. A sliver that pulling
     opens is shut or opened (without_slivers); where it cannot be, the solve is not kept."""
-    from layoutdsl.layout.realism import Space, facing_gaps, measure_spaces, voids_at
+    from layoutdsl.layout.realism import facing_gaps, void_area, voids_at
 
     # the sizes the layout has are the least each room keeps: closing a void by shrinking
     # the rooms around it would only trade the void for smaller rooms
     problem, geometry, options, orientations = _relations_fixed(spec, rects, _least_kept)
     joined = {frozenset(pair) for pair in problem.joins}
-
-    def spaces_of(current):
-        return [Space(room_id, "", "R", ((x, y, x + w, y + h),)) for room_id, (x, y, w, h) in current.items()]
+    void_before = void_area(_box_spaces(geometry))
 
     def pulled_together(all_first: bool) -> tuple[float, dict[str, Rect]]:
-        current = geometry
-        void = measure_spaces(spaces_of(current), walldim=problem.walldim).void_area
+        current, void = geometry, void_before
         pulls: dict[Pair, float] = {}
         solves = 0
         while void > 0.0 and solves < COMPACT_SOLVES and deadline - time.monotonic() > 0.05:
-            spaces = spaces_of(current)
+            spaces = _box_spaces(current)
             gaps = [gap for gap in facing_gaps(spaces, problem.walldim, PULL_RADIUS)
                     if frozenset((gap.a, gap.b)) not in joined and gap.width > problem.walldim + 1e-3
                     and not _anything_between(current, gap.a, gap.b)]
@@ -1215,9 +1232,9 @@ def compacted(spec: Spec, rects: dict[str, Rect], *, usable_width: float, deadli
                 if not set(added) - set(pulls) or solves >= COMPACT_SOLVES:
                     continue
                 solves += 1
-                pulled = _pulled(problem, options, orientations, {**pulls, **added}, current, spec, spaces_of,
-                                 joined, usable_width, deadline, nodes, seed)
-                after = None if pulled is None else measure_spaces(spaces_of(pulled), walldim=problem.walldim).void_area
+                pulled = _pulled(problem, options, orientations, {**pulls, **added}, current, spec, joined,
+                                 usable_width, deadline, nodes, seed)
+                after = None if pulled is None else void_area(_box_spaces(pulled))
                 _debug(f"  compact: void {void:.1f} -> {after} m2 ({len(added)} pairs pulled)")
                 if after is not None and after < void - 1e-9:
                     pulls.update(added)
@@ -1235,22 +1252,16 @@ def compacted(spec: Spec, rects: dict[str, Rect], *, usable_width: float, deadli
 
 
 def _pulled(problem: _Problem, options, orientations, pulls: dict[Pair, float], current: dict[str, Rect],
-            spec: Spec, spaces_of, joined, usable_width: float, deadline: float, nodes: int,
+            spec: Spec, joined, usable_width: float, deadline: float, nodes: int,
             seed: int) -> dict[str, Rect] | None:
     """One solve of compacted: the rectangles with `pulls` on, verified and without slivers
     (None when the relations do not allow it)."""
     from layoutdsl.layout.realism import find_slivers
 
-    outcome = _solve_active(problem, options, mode="final", seconds=max(0.05, deadline - time.monotonic()),
-                            nodes=nodes, seed=seed, orientations=orientations, turnable=frozenset(),
-                            start=None, feasibility_emphasis=False, within=(current, None), pulls=pulls)
-    if outcome is None or max(outcome.stretched.values(), default=0.0) > STRETCH_NOISE_M:
-        return None
-    if check_start(problem.checked or problem.spec, outcome.rects):
-        return None
-    pulled = outcome.rects
-    if any(frozenset((sliver.a, sliver.b)) not in joined
-           for sliver in find_slivers(spaces_of(pulled), problem.walldim, usable_width)):
+    pulled = _sized_again(problem, options, orientations, current, deadline=deadline, nodes=nodes, seed=seed,
+                          pulls=pulls)
+    if pulled is not None and any(frozenset((sliver.a, sliver.b)) not in joined
+                                  for sliver in find_slivers(_box_spaces(pulled), problem.walldim, usable_width)):
         pulled = without_slivers(spec, pulled, usable_width=usable_width, deadline=deadline, nodes=nodes, seed=seed)
     return pulled
 
