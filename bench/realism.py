@@ -6,15 +6,17 @@ variants of each (`--variants 5`: new arrangements from the room graph; `--varia
 `layoutdsl evaluate` on the original against each set. Prints one row per plan and source:
 
     variants found, arrangement difference from the original (mean, min), room area / the
-    original's, mean |relative deviation| of the entrance-to-entrance path lengths, and the
-    exploration effort per m² of room area (distance to the coverage target / room area)
-    against the original's.
+    original's, mean |relative deviation| of the entrance-to-entrance path lengths, the
+    same for the mean over the variants of each pair's path (the thesis' measure, §6.4, and
+    issue 40's: the deviation of the mean, averaged over the pairs), and the exploration
+    effort per m² of room area (distance to the coverage target / room area) against the
+    original's.
 
 Everything goes through the command line, as a user would run it; the reports stay in
 --work (default: a temporary folder) for a closer look.
 
     python bench/realism.py [--plans school_Sabadell3,school_Neulengbach1,school_wilbraham]
-                            [--variants 5] [--work DIR] [--out FILE]
+                            [--variants 5] [--sources graph,hints] [--work DIR] [--out FILE]
 """
 
 from __future__ import annotations
@@ -56,6 +58,9 @@ def run_source(plan: Path, work: Path, source: str, variants: int) -> dict:
     generated = report["generated"]
     deviation = [g["deviation"] for g in generated]
     deviations = [abs(v) for d in deviation for v in d["paths"].values() if v is not None]
+    # the report's per-pair deviation of the mean path over the variants, in size
+    of_means = [abs(p["relative_deviation_of_mean"]) for p in report["path_pairs"]
+                if p["relative_deviation_of_mean"] is not None]
     explore = [g["exploration"].get("distance_per_m2") for g in generated]
     explore = [v for v in explore if v is not None]
     row.update(
@@ -63,6 +68,8 @@ def run_source(plan: Path, work: Path, source: str, variants: int) -> dict:
         difference_min=min(d["arrangement_difference"] for d in deviation),
         area=statistics.fmean(1 + d["room_area"] for d in deviation),
         path_dev=statistics.fmean(deviations) if deviations else None,
+        path_mean_dev=statistics.fmean(of_means) if of_means else None,
+        pairs=len(report["path_pairs"]),
         unreachable=sum(p["generated_unreachable"] for p in report["path_pairs"]),
         explore=statistics.fmean(explore) if explore else None,
         explore_original=original["exploration"].get("distance_per_m2"),
@@ -79,27 +86,32 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--plans", default=PLANS, help="comma-separated plan names (file stems)")
     parser.add_argument("--folder", type=Path, default=DEFAULT_FOLDER)
     parser.add_argument("--variants", type=int, default=5)
+    parser.add_argument("--sources", default="graph,hints",
+                        help="comma-separated variant sources: graph (new arrangements), hints")
     parser.add_argument("--work", type=Path, help="keep the compiled plans and reports here")
     parser.add_argument("--out", type=Path, help="also write the table to this file")
     args = parser.parse_args(argv)
     work = args.work or Path(tempfile.mkdtemp(prefix="layoutdsl-realism-"))
     work.mkdir(parents=True, exist_ok=True)
     header = (f"{'plan':30s} {'source':6s} {'found':>5s} {'diff':>6s} {'min':>6s} {'area':>6s} "
-              f"{'path|d|':>8s} {'unreach':>7s} {'expl/m2':>8s} {'orig':>7s}")
+              f"{'path|d|':>8s} {'mean|d|':>8s} {'pairs':>5s} {'unreach':>7s} {'expl/m2':>8s} {'orig':>7s}")
     lines = [header]
     print(header, flush=True)
     for name in args.plans.split(","):
         plan = args.folder / f"{name}.xml"
-        for source in ("graph", "hints"):
+        for source in args.sources.split(","):
             r = run_source(plan, work, source, args.variants)
             line = (f"{r['plan']:30s} {source:6s} {r['found']:5d} {_fmt(r.get('difference_mean'))[:6]:>6s} "
                     f"{_fmt(r.get('difference_min'))[:6]:>6s} {_fmt(r.get('area'))[:6]:>6s} "
-                    f"{_fmt(r.get('path_dev')):>8s} {r.get('unreachable', 0):7d} "
+                    f"{_fmt(r.get('path_dev')):>8s} {_fmt(r.get('path_mean_dev')):>8s} {r.get('pairs', 0):5d} "
+                    f"{r.get('unreachable', 0):7d} "
                     f"{_fmt(r.get('explore')):>8s} {_fmt(r.get('explore_original')):>7s}")
             lines.append(line)
             print(line, flush=True)
     lines.append("diff: arrangement difference from the original (mean, min); area: room area / the "
                  "original's; path|d|: mean |relative deviation| of entrance-to-entrance paths; "
+                 "mean|d|: |relative deviation| of each pair's mean path over the variants, averaged "
+                 "over the pairs (the thesis' measure); pairs: entrance pairs; "
                  "expl/m2: exploration distance to the coverage target per m² of room area "
                  f"(mean of the variants; orig: the original's). Work folder: {work}")
     print(lines[-1])
