@@ -18,7 +18,9 @@ WORK["turn_after_rounds"], a corridor-like room of each door between two of them
 best state still leaves unmet turns a corner (shapes.with_turns): it becomes an L, split
 where it lies, and the rounds go on from there. The first rectangles that pass
 `check_start` are the answer. Every limit is work (budgets.WORK); the deadline
-only cuts a compile off, and the result then says so (`cut_off`).
+only cuts a compile off, and the result then says so (`cut_off`). A generator stopped by
+fewer rounds than that (a variant's quick try) returns where it stopped (`Resume`), and
+a later call goes on from there.
 
 A spec without a boundary of its own (`boundary.chosen`), or a compile allowed to grow a
 given one (`grow_boundary`), treats the outline as a guide only (cost.CHOSEN_OVERFLOW_WEIGHT);
@@ -82,14 +84,41 @@ class Generated:
     turned: tuple[str, ...] = ()
     """Corridor-like rooms the generator made L-shaped (shapes.with_turns): `spec` has
     their arms."""
+    resume: Resume | None = None
+    """Without rectangles, when the rounds ran out (not the clock): where the schedule
+    stopped, so `generate(..., resume=...)` goes on with the next round instead of doing
+    the same rounds again."""
+
+
+@dataclass(frozen=True)
+class Resume:
+    """Where a generator stopped by its round limit: everything the rounds after it read.
+    Resumed, the rounds give what one longer run would have given (same seeds, same
+    states), so a variant's quick try and its full construction do no round twice."""
+
+    turns: tuple[tuple[tuple[str, str], ...], ...]
+    """The doors each turn of corridors was made for (shapes.with_turns), in order: the
+    spec the rounds searched is the given one with these turns made again (a Resume
+    crosses process boundaries, and a Spec does not pickle)."""
+    rounds: int
+    moves: int
+    turned: tuple[str, ...]
+    best: schedule.Found | None
+    carried: tuple | None
+    """The state the turned corridors were laid in, for the next round's first chain."""
+    sized: frozenset
+    """States the sizing stage already failed on."""
+    rng_state: tuple
 
 
 def generate(spec: Spec, *, seed: int = 0, deadline: float | None = None, use_hints: bool = True,
              perturb_hints: bool = False, grow_boundary: bool = False,
-             max_rounds: int | None = None) -> Generated:
+             max_rounds: int | None = None, resume: Resume | None = None) -> Generated:
     """A first layout of the spec (see the module docstring). `perturb_hints`: the hints'
     boxes moved a little first (variants that stay near the original plan); `max_rounds`:
-    fewer rounds than budgets.WORK's (variants try another seed sooner)."""
+    fewer rounds than budgets.WORK's (variants try another seed sooner); `resume`: the
+    `Generated.resume` of an earlier call with the same spec and seed and fewer rounds,
+    whose rounds are not made again."""
     if spec.boundary is None or not spec.rooms:
         return Generated(None, spec, "")
     if deadline is None:
@@ -98,13 +127,16 @@ def generate(spec: Spec, *, seed: int = 0, deadline: float | None = None, use_hi
                           final_nodes=WORK["final_nodes"])
     rng = random.Random(seed)
     drawn = lshape.seeds_spec(spec)
+    rounds = max_rounds if max_rounds is not None else WORK["max_rounds"]
+    if resume is not None:
+        rng.setstate(resume.rng_state)
+        return _annealed(spec, drawn, rng, seed, limits, grow_boundary, rounds, resume)
     if use_hints and hint_geometry(drawn) is not None:
         found = _from_hints(spec, drawn, rng, seed, replace(limits, round_nodes=WORK["hint_round_nodes"]),
                             perturb_hints)
         if found is not None:
             return Generated(found, spec, "hints")
-    return _annealed(spec, drawn, rng, seed, limits, grow_boundary,
-                     max_rounds if max_rounds is not None else WORK["max_rounds"])
+    return _annealed(spec, drawn, rng, seed, limits, grow_boundary, rounds)
 
 
 def _from_hints(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: RepairLimits,
@@ -128,7 +160,7 @@ def _from_hints(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: 
 
 
 def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: RepairLimits,
-              grow_boundary: bool, max_rounds: int) -> Generated:
+              grow_boundary: bool, max_rounds: int, resume: Resume | None = None) -> Generated:
     boundary = spec.boundary
     assert boundary is not None
     outline = (boundary.w, boundary.h)
@@ -138,6 +170,23 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
     current = _Searched.of(spec, drawn, outline, soft)
     best: list = []
     carried: list = []
+    done_rounds = moves = 0
+    turned: list[str] = []
+    # states the sizing stage already failed on: a round whose chains all end where they
+    # started (chain 0 starts from the best state) hands the same state back, and its
+    # sizing would fail the same way again (measured: 17 s of cml_synth_121's 48)
+    sized: set[tuple] = set()
+    turns: list[tuple[tuple[str, str], ...]] = []
+    if resume is not None:
+        turned_spec = spec
+        for doors in resume.turns:
+            turned_spec, _made = shapes.with_turns(turned_spec, list(doors))
+            turns.append(doors)
+        if resume.turns:
+            current = _Searched.of(turned_spec, lshape.seeds_spec(turned_spec), outline, soft)
+        best = [resume.best] if resume.best is not None else []
+        carried = [resume.carried] if resume.carried is not None else []
+        done_rounds, moves, turned, sized = resume.rounds, resume.moves, list(resume.turned), set(resume.sized)
 
     def starts(round_index: int, chain: int):
         # the first chain of a later round goes on from the best state so far (longer, so
@@ -149,22 +198,21 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
             return carried[0]
         return initial.initial_state(current.drawn, current.rooms, _embedding_seed(seed, round_index, chain))
 
-    done_rounds = moves = 0
-    turned: list[str] = []
-    # states the sizing stage already failed on: a round whose chains all end where they
-    # started (chain 0 starts from the best state) hands the same state back, and its
-    # sizing would fail the same way again (measured: 17 s of cml_synth_121's 48)
-    sized: set[tuple] = set()
 
     def ended(cut_off: bool = False) -> Generated:
+        resume = None if cut_off else Resume(tuple(turns), done_rounds, moves, tuple(turned),
+                                             best[0] if best else None, carried[0] if carried else None,
+                                             frozenset(sized), rng.getstate())
         if not best:
-            return Generated(None, current.spec, "", done_rounds, moves, cut_off=cut_off, turned=tuple(turned))
+            return Generated(None, current.spec, "", done_rounds, moves, cut_off=cut_off, turned=tuple(turned),
+                             resume=resume)
         away, overflow = current.rooms.outside_shortfall(best[0].state)
         return Generated(None, current.spec, "", done_rounds, moves, cut_off=cut_off,
                          unmet=tuple(current.rooms.unmet_doors(best[0].state)), away=tuple(away),
-                         overflow=overflow, turned=tuple(turned))
+                         overflow=overflow, turned=tuple(turned), resume=resume)
 
-    for found in schedule.rounds(lambda _round: current.rooms, starts, seed, limits.deadline, max_rounds):
+    for found in schedule.rounds(lambda _round: current.rooms, starts, seed, limits.deadline, max_rounds,
+                                 first_round=done_rounds):
         if found is None:
             return ended(cut_off=True)
         done_rounds += 1
@@ -190,11 +238,13 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
             # the doors still unmet are those a corridor's straight run cannot reach: such a
             # corridor turns a corner for the rounds that follow, from where it lay
             doors = current.rooms.unmet_doors(best[0].state)
-            turned_spec, made = shapes.with_turns(current.spec, [door[:2] for door in doors])
+            turn = tuple(door[:2] for door in doors)
+            turned_spec, made = shapes.with_turns(current.spec, list(turn))
             if made:
                 geometry = shapes.turned_geometry(current.rooms.geometry(best[0].state), made, doors)
                 current = _Searched.of(turned_spec, lshape.seeds_spec(turned_spec), outline, soft)
                 turned += made
+                turns.append(turn)
                 best.clear()
                 carried[:] = [current.rooms.state_of(geometry)]
     return ended()
@@ -254,4 +304,4 @@ def _embedding_seed(seed: int, round_index: int, chain: int) -> int:
     return random.Random(f"embedding:{seed}:{round_index}:{chain}").randrange(2**31)
 
 
-__all__ = ["Generated", "generate"]
+__all__ = ["Generated", "Resume", "generate"]

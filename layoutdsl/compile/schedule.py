@@ -87,13 +87,15 @@ def moves_of_round(rooms: Rooms, round_index: int) -> int:
 
 
 def rounds(rooms_of: Callable[[int], Rooms], starts, seed: int, deadline: float | None,
-           max_rounds: int) -> Iterator[Found | None]:
-    """The best chain of each round in turn; None when `deadline` (time.monotonic()) cut the
-    round off. `rooms_of(round_index)` gives the rooms a round searches (the generator may
-    reshape them between rounds), `starts(round_index, chain_index)` each chain's initial
-    state."""
+           max_rounds: int, first_round: int = 0) -> Iterator[Found | None]:
+    """The best chain of each round in turn, from `first_round` (a schedule resumed where
+    it stopped) up to `max_rounds`; None when `deadline` (time.monotonic()) cut the round
+    off. `rooms_of(round_index)` gives the rooms a round searches (the generator may reshape
+    them between rounds), `starts(round_index, chain_index)` each chain's initial state.
+    A round's moves and seeds depend only on its index, so rounds 0..k-1 then k..n-1 are
+    rounds 0..n-1."""
     with ThreadPoolExecutor(max_workers=CHAINS) as pool:
-        for round_index in range(max_rounds):
+        for round_index in range(first_round, max_rounds):
             this = rooms_of(round_index)
             moves = moves_of_round(this, round_index)
             cancel = np.zeros(1, dtype=np.int64)

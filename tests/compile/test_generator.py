@@ -55,6 +55,20 @@ def test_same_spec_and_seed_give_the_same_rectangles():
     assert (first.rounds, first.moves) == (second.rounds, second.moves)
 
 
+def test_a_resumed_generator_gives_what_one_longer_run_gives():
+    # ladder_spec at seed 2 needs two rounds: a variant's quick try of one round stops
+    # without rectangles, and its full construction goes on from there
+    spec = ladder_spec()
+    stopped = generate(spec, seed=2, max_rounds=1)
+    assert stopped.rects is None and stopped.rounds == 1
+    assert stopped.resume is not None and stopped.resume.rounds == 1
+    resumed = generate(spec, seed=2, resume=stopped.resume)
+    straight = generate(spec, seed=2)
+    assert straight.rounds == 2 and straight.rects is not None
+    assert resumed.rects == straight.rects
+    assert (resumed.rounds, resumed.moves) == (straight.rounds, straight.moves)
+
+
 def test_same_seed_gives_the_same_layout_file_apart_from_timing():
     spec = cycle_spec()
     options = SolveOptions(time_limit=60, quiet=True, search=False, seed=1)

@@ -57,3 +57,16 @@ def test_the_generator_turns_a_corridor_where_rectangles_cannot_meet_every_door(
     assert {arm.room for arm in generated.spec.arms} == set(generated.turned)
     assert verify(generated.spec, layout_from_rects(generated.spec, generated.rects)) == []
     assert generate(spec, seed=0).rects == generated.rects
+
+
+def test_a_generator_resumed_after_its_corridors_turned_goes_on_as_one_run():
+    # the corridors turn after the second round; a run stopped there and resumed (a variant's
+    # quick try, then its full construction) searches the same turned spec from the same state
+    spec = _corridors_k4()
+    stopped = generate(spec, seed=0, max_rounds=2)
+    assert stopped.rects is None and stopped.resume is not None
+    assert stopped.resume.turns and stopped.turned
+    resumed = generate(spec, seed=0, resume=stopped.resume)
+    straight = generate(spec, seed=0)
+    assert resumed.rects == straight.rects and resumed.rects is not None
+    assert (resumed.rounds, resumed.moves, resumed.turned) == (straight.rounds, straight.moves, straight.turned)
