@@ -15,9 +15,11 @@ Two sources of variants:
 Each variant stops at a short deterministic rule: its first verified layout, polished with
 its relations fixed (SolveOptions.search off), so the same spec and seed give the same
 bytes and a 50-room variant costs seconds, not the compile's full time limit. A new
-arrangement's first try is quick (QUICK_ROUNDS rounds of the generator, then the seed is given
-up); the seeds whose quick try found nothing get their full construction if the quick tries
-run out before N different arrangements are kept.
+arrangement's first try is quick (ROUND_TIERS[0] rounds of the generator, then the seed is
+given up); the seeds whose quick try found nothing go on to the next tier's rounds if the
+tries run out before N different arrangements are kept, and so on to the generator's full
+budget, each resumed where the tier before stopped (generator.Resume): no round is made
+twice, and a seed that would need all of its rounds waits until the cheaper seeds are done.
 
 `diversity` is the plain share of room pairs whose relation differs; `compile --variants`
 reports the arrangement difference of layoutdsl.layout.difference (best of the 8
@@ -138,28 +140,35 @@ _SPEC_FOR_WORKERS: Spec | None = None
 """The spec, inherited by forked workers (AST spans hold mapping proxies, which don't pickle)."""
 
 
-def _solve_variant(job: tuple[int, object, tuple[str, float, float] | None, str, bool]):
-    """Compile one variant in a worker: its layout and the position it kept (or None)."""
-    variant_seed, options, point, source, quick = job
+def _solve_variant(job: tuple):
+    """Compile one variant in a worker: its layout, the position it kept (or None) and where
+    its generator stopped (_compile_variant)."""
+    variant_seed, options, point, source, rounds, resume = job
     spec = _SPEC_FOR_WORKERS
     assert spec is not None
-    return _compile_variant(spec, variant_seed, options, point, source, quick=quick)
+    return _compile_variant(spec, variant_seed, options, point, source, rounds=rounds, resume=resume)
 
 
-QUICK_ROUNDS = 3
-"""Rounds of the generator's schedule a variant's quick try makes before its seed is given
-up for the next (see _compile_variant)."""
+ROUND_TIERS: tuple[int | None, ...] = (3, 5, None)
+"""Rounds of the generator's schedule a seed makes in each tier of tries (None: its full
+budget, budgets.WORK["max_rounds"]); a tier's tries resume where the tier before stopped.
+The rounds double their moves, so a seed that finds nothing in 8 rounds costs about 6
+times what 5 rounds cost: measured on office_floorplanMAIN (`--variants 8 --workers 2`),
+with only the quick tier before the full one (resumed) 8 variants took 215 s, with the
+middle tier 194 s (and 224 s when the full construction started again from round 0)."""
 
 VARIANT_TIME_SHARE = 0.75
 """Share of a variant's time limit its generator may use before it is cut off."""
 
 
 def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str = "graph",
-                     quick: bool = False):
-    """(layout, position kept) of one variant, or (None, None).
+                     rounds: int | None = None, resume=None):
+    """(layout, position kept, None) of one variant, or (None, None, resume).
 
-    `quick`: the generator gives up after QUICK_ROUNDS rounds of its schedule instead of
-    its full budget: another seed is cheaper than the slowest ones.
+    `rounds`: the generator gives up after so many rounds of its schedule instead of its
+    full budget (a tier of ROUND_TIERS): another seed is cheaper than the slowest ones. The
+    `resume` it returns (generator.Resume; None if the clock cut it off) lets the seed's
+    next tier go on from there instead of making those rounds again.
     """
     from layoutdsl.compile import compile_spec
     from layoutdsl.compile.generator import generate
@@ -169,6 +178,7 @@ def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str 
     from_hints = source == "hints"
 
     attempts = [point, None] if point is not None else [None]
+    stopped = None
     for attempt_point in attempts:
         variant_spec = spec
         if attempt_point is not None:
@@ -187,16 +197,19 @@ def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str 
         generated = generate(variant_spec, seed=variant_seed, use_hints=from_hints, perturb_hints=from_hints,
                              deadline=time.monotonic() + VARIANT_TIME_SHARE * limit,
                              grow_boundary=options.grow_boundary,
-                             max_rounds=QUICK_ROUNDS if quick else None)
+                             max_rounds=rounds,
+                             resume=resume if attempt_point is None else None)
         rects, variant_spec = generated.rects, generated.spec
         if rects is None:
+            if attempt_point is None:
+                stopped = generated.resume
             continue
         variant_options = replace(options, time_limit=max(0.5, limit - (time.monotonic() - attempt_began)),
                                   seed=variant_seed, quiet=True, search=False)
         result = compile_spec(variant_spec, variant_options, start=rects, explain_infeasible=False)
         if result.layout is not None:
-            return result.layout, attempt_point
-    return None, None
+            return result.layout, attempt_point, None
+    return None, None, stopped
 
 
 def compile_variants(
@@ -243,8 +256,8 @@ def compile_variants(
             if room is not None and spec.boundary is not None:
                 x, y = variant_point(spec, seed, index)
                 point = (room, x, y)
-            jobs.append((seed + index - 1, options, point, source, False))
-        results = _run_jobs(spec, jobs, workers)
+            jobs.append((seed + index - 1, options, point, source, None, None))
+        results = [(layout, point) for layout, point, _ in _run_jobs(spec, jobs, workers)]
         seeds = [job[0] for job in jobs]
     layouts = [layout for layout, _ in results]
     positions = [point for _, point in results]
@@ -279,15 +292,15 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     and a few queued, so no core waits for a slow seed; their outcomes are taken in seed
     order, and one is kept when it lies at least MIN_PAIRWISE from every variant kept
     before it, until N are kept, 1 + SEEDS_PER_VARIANT * (N - 1) seeds are used or
-    QUICK_FAILURES * N quick tries found nothing. Then the seeds whose quick try found
-    nothing get their full construction, in seed order, until N are kept; then layouts
-    within MIN_PAIRWISE of a kept one fill any still missing (None where even those run
-    out).
+    QUICK_FAILURES * N quick tries found nothing. Then the seeds whose tries found nothing
+    go on, in seed order, with the rounds of each later tier of ROUND_TIERS in turn, until
+    N are kept; then layouts within MIN_PAIRWISE of a kept one fill any still missing (None
+    where even those run out).
 
     Taking outcomes in seed order makes the variants a function of the spec and seed
     wherever each variant's own stopping rule is, however the workers' timing falls; and
-    `--variants 1 --seed S` (a quick try of S, then its full construction) gives the
-    variant of seed S again. Measured on school_wilbraham (2 workers, `--variants 20`): a
+    `--variants 1 --seed S` (the tiers of S, resumed one from another: one full
+    construction) gives the variant of seed S again. Measured on school_wilbraham (2 workers, `--variants 20`): a
     round of N variants, then rounds of redraws, waited on each round's slowest seed (148 s);
     seeds streamed as workers free up spend no such wait (111 s).
     """
@@ -295,11 +308,11 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
 
     kept: list[tuple[int, Layout, dict]] = []
     close: list[tuple[int, Layout]] = []
-    failed: list[int] = []
+    failed: list[tuple[int, object]] = []
 
-    def take(variant_seed: int, layout: Layout | None, how: str) -> None:
+    def take(variant_seed: int, layout: Layout | None, how: str, resume=None) -> None:
         if layout is None:
-            failed.append(variant_seed)
+            failed.append((variant_seed, resume))
             return
         centres = layout_centres(layout)
         if all(difference(centres, other) >= MIN_PAIRWISE for _, _, other in kept):
@@ -315,14 +328,19 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     def quick_done() -> bool:
         return enough() or len(failed) >= QUICK_FAILURES * n
 
-    quick = [(s, options, None, "graph", True) for s in range(seed, seed + 1 + SEEDS_PER_VARIANT * (n - 1))]
-    for job, (layout, _) in _in_seed_order(spec, quick, workers, quick_done):
-        take(job[0], layout, "quick try")
-    if not enough() and failed:
-        full = [(s, options, None, "graph", False) for s in failed]
+    quick = [(s, options, None, "graph", ROUND_TIERS[0], None)
+             for s in range(seed, seed + 1 + SEEDS_PER_VARIANT * (n - 1))]
+    for job, (layout, _, resume) in _in_seed_order(spec, quick, workers, quick_done):
+        take(job[0], layout, "quick try", resume)
+    for tier in ROUND_TIERS[1:]:
+        if enough() or not failed:
+            break
+        # each seed goes on from where its last tier stopped (one the clock cut off starts over)
+        longer = [(s, options, None, "graph", tier, resume) for s, resume in failed]
         failed.clear()
-        for job, (layout, _) in _in_seed_order(spec, full, workers, enough):
-            take(job[0], layout, "full construction")
+        how = "full construction" if tier is None else f"{tier} rounds"
+        for job, (layout, _, resume) in _in_seed_order(spec, longer, workers, enough):
+            take(job[0], layout, how, resume)
     chosen = [(s, layout) for s, layout, _ in kept]
     for variant_seed, layout in close[:n - len(kept)]:
         chosen.append((variant_seed, layout))
@@ -346,8 +364,8 @@ def _in_seed_order(spec: Spec, jobs: list, workers: int, enough: Callable[[], bo
         for job in jobs:
             if enough():
                 return
-            variant_seed, options, point, source, quick = job
-            yield job, _compile_variant(spec, variant_seed, options, point, source, quick=quick)
+            variant_seed, options, point, source, rounds, resume = job
+            yield job, _compile_variant(spec, variant_seed, options, point, source, rounds=rounds, resume=resume)
         return
     global _SPEC_FOR_WORKERS
     _SPEC_FOR_WORKERS = spec
@@ -377,7 +395,7 @@ def _in_seed_order(spec: Spec, jobs: list, workers: int, enough: Callable[[], bo
 
 
 def _run_jobs(spec: Spec, jobs: list, workers: int) -> list:
-    """(layout, position kept) per job, in job order: every job, `workers` at a time."""
+    """(layout, position kept, resume) per job, in job order: every job, `workers` at a time."""
     return [result for _, result in _in_seed_order(spec, jobs, workers, enough=lambda: False)]
 
 
