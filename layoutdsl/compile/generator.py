@@ -198,7 +198,6 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
             return carried[0]
         return initial.initial_state(current.drawn, current.rooms, _embedding_seed(seed, round_index, chain))
 
-
     def ended(cut_off: bool = False) -> Generated:
         resume = None if cut_off else Resume(tuple(turns), done_rounds, moves, tuple(turned),
                                              best[0] if best else None, carried[0] if carried else None,

@@ -300,9 +300,10 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     Taking outcomes in seed order makes the variants a function of the spec and seed
     wherever each variant's own stopping rule is, however the workers' timing falls; and
     `--variants 1 --seed S` (the tiers of S, resumed one from another: one full
-    construction) gives the variant of seed S again. Measured on school_wilbraham (2 workers, `--variants 20`): a
-    round of N variants, then rounds of redraws, waited on each round's slowest seed (148 s);
-    seeds streamed as workers free up spend no such wait (111 s).
+    construction) gives the variant of seed S again. Measured on school_wilbraham (2
+    workers, `--variants 20`): a round of N variants, then rounds of redraws, waited on each
+    round's slowest seed (148 s); seeds streamed as workers free up spend no such wait (111
+    s).
     """
     from layoutdsl.layout.difference import difference, layout_centres
 
