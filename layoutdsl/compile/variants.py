@@ -153,9 +153,9 @@ ROUND_TIERS: tuple[int | None, ...] = (3, 5, None)
 """Rounds of the generator's schedule a seed makes in each tier of tries (None: its full
 budget, budgets.WORK["max_rounds"]); a tier's tries resume where the tier before stopped.
 The rounds double their moves, so a seed that finds nothing in 8 rounds costs about 6
-times what 5 rounds cost: measured on office_floorplanMAIN (`--variants 8 --workers 2`),
-with only the quick tier before the full one (resumed) 8 variants took 215 s, with the
-middle tier 194 s (and 224 s when the full construction started again from round 0)."""
+times what 5 rounds cost. Measured on office_floorplanMAIN (`--variants 8 --workers 2`,
+idle): a quick try, then a full construction from round 0, took 233 s for 8 variants;
+these tiers, resumed, 192 s."""
 
 VARIANT_TIME_SHARE = 0.75
 """Share of a variant's time limit its generator may use before it is cut off."""
