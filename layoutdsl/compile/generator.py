@@ -102,7 +102,6 @@ class Resume:
     crosses process boundaries, and a Spec does not pickle)."""
     rounds: int
     moves: int
-    turned: tuple[str, ...]
     best: schedule.Found | None
     carried: tuple | None
     """The state the turned corridors were laid in, for the next round's first chain."""
@@ -178,15 +177,16 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
     sized: set[tuple] = set()
     turns: list[tuple[tuple[str, str], ...]] = []
     if resume is not None:
+        # the turns made again give the spec the rounds searched and the rooms they turned
         turned_spec = spec
         for doors in resume.turns:
-            turned_spec, _made = shapes.with_turns(turned_spec, list(doors))
-            turns.append(doors)
+            turned_spec, made = shapes.with_turns(turned_spec, list(doors))
+            turned += made
         if resume.turns:
             current = _Searched.of(turned_spec, lshape.seeds_spec(turned_spec), outline, soft)
         best = [resume.best] if resume.best is not None else []
         carried = [resume.carried] if resume.carried is not None else []
-        done_rounds, moves, turned, sized = resume.rounds, resume.moves, list(resume.turned), set(resume.sized)
+        done_rounds, moves, turns, sized = resume.rounds, resume.moves, list(resume.turns), set(resume.sized)
 
     def starts(round_index: int, chain: int):
         # the first chain of a later round goes on from the best state so far (longer, so
@@ -199,9 +199,9 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
         return initial.initial_state(current.drawn, current.rooms, _embedding_seed(seed, round_index, chain))
 
     def ended(cut_off: bool = False) -> Generated:
-        resume = None if cut_off else Resume(tuple(turns), done_rounds, moves, tuple(turned),
-                                             best[0] if best else None, carried[0] if carried else None,
-                                             frozenset(sized), rng.getstate())
+        resume = None if cut_off else Resume(tuple(turns), done_rounds, moves, best[0] if best else None,
+                                             carried[0] if carried else None, frozenset(sized),
+                                             rng.getstate())
         if not best:
             return Generated(None, current.spec, "", done_rounds, moves, cut_off=cut_off, turned=tuple(turned),
                              resume=resume)

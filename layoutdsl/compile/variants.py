@@ -230,7 +230,8 @@ def compile_variants(
 
     Each try of a seed gets at most options.time_limit seconds (a new arrangement's seed may
     have up to one try per tier of ROUND_TIERS, each resumed from the last); up to `workers`
-    (default: one per usable core) run at once. `source` is one of SOURCES (see the module docstring).
+    (default: one per usable core) run at once. `source` is one of SOURCES (see the module
+    docstring).
     `world_options` (wall_height, robot) go to the 3D emitters. `progress` gets a line per
     new arrangement kept.
     """
