@@ -387,7 +387,9 @@ def verification_failed(spec: Spec, violations) -> Diagnostic:
         filename=spec.path,
         span=_first_line_span(spec),
         label="layout for this spec",
-        help="this is a bug or a solver tolerance problem in layoutdsl; please report it with the spec",
+        help=("the arrangement's relations allow neither a wall nor a usable space there; another "
+              "`--seed` gives another arrangement" if all(v.rule == "sliver" for v in violations)
+              else "this is a bug or a solver tolerance problem in layoutdsl; please report it with the spec"),
         notes=notes,
     )
 

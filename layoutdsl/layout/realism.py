@@ -28,12 +28,12 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
+from layoutdsl.layout.verify import USABLE_WIDTH  # a gap narrower is a sliver: the rule compile keeps
+
 MIN_GAP = 0.6
 """Metres: a gap between rooms narrower than this is wall, not a way in (issue 40)."""
 MIN_OPENING = 0.9
 """Metres of outline on the outside that make an entrance open (a door's width)."""
-USABLE_WIDTH = 0.6
-"""Metres: a gap between rooms wider than a wall but narrower than this is a sliver."""
 RESOLUTION = 0.05
 """Metres per raster cell."""
 MAX_CELLS = 6_000_000

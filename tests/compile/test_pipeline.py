@@ -281,3 +281,22 @@ def test_the_realism_passes_may_run_to_the_compile_s_deadline(monkeypatch):
     result = compile_spec(FIVE, SolveOptions(time_limit=100, quiet=True, search=False), start=FIVE_RECTS)
     assert result.layout is not None, result.diagnostics
     assert left["compacted"] > 90.0 and left["without_slivers"] > 90.0
+
+
+@pytest.mark.parametrize("e_x", [4.2, 4.5])
+def test_a_layout_left_with_a_sliver_is_not_written(monkeypatch, e_x):
+    # whatever the realism passes return, compile's last check decides: with E 0.5 m from D
+    # (more than a wall, less than a usable space) nothing is written and E903 names them
+    import layoutdsl.compile.pipeline as pipeline
+
+    monkeypatch.setattr(pipeline, "without_slivers", lambda *args, **kwargs: None)
+    monkeypatch.setattr(pipeline, "compacted", lambda *args, **kwargs: {**FIVE_RECTS, "E": (e_x, 0.8, 3.0, 3.0)})
+    result = compile_spec(FIVE, SolveOptions(time_limit=20, quiet=True, search=False), start=FIVE_RECTS)
+    if e_x == 4.2:  # a wall apart: the layout passed back is the one written
+        assert result.layout is not None, result.diagnostics
+        assert {r.id: (r.x, r.w) for r in result.layout.rooms}["E"] == (4.2, 3.0)
+        return
+    assert result.layout is None
+    [diagnostic] = result.diagnostics
+    assert diagnostic.code == "E903" and "--seed" in diagnostic.help
+    assert any("`D` and `E` face each other 0.5 m apart" in note for note in diagnostic.notes)

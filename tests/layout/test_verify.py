@@ -173,3 +173,32 @@ def test_tolerance_is_explicit():
     # 1e-7 m inside the wall gap passes, 1e-5 m does not.
     assert verify(_spec(), _layout(_spec(), {**VALID, "R1": (4.2 - 1e-7, 2.2, 4, 3)})) == []
     assert "overlap" in _rules(_spec(), {**VALID, "R1": (4.2 - 1e-5, 2.2, 4, 3)})
+
+
+# --- slivers: not a rule of the spec, but one compile's generator keeps (issue 40) ---------
+
+from layoutdsl.layout.verify import slivers  # noqa: E402
+
+
+@pytest.mark.parametrize(("gap", "sliver"), [(WALL, False), (0.35, True), (0.59, True), (0.6, False), (1.5, False)])
+def test_a_gap_between_two_rooms_is_a_wall_or_a_space(gap, sliver):
+    rects = {**VALID, "R1": (4.0 + gap, 2.2, 4, 3)}
+    found = slivers(_spec(), _layout(_spec(), rects))
+    assert [v.rooms for v in found] == ([("R0", "R1")] if sliver else [])
+    assert all(v.rule == "sliver" and f"{gap:.3g} m apart" in v.message for v in found)
+
+
+def test_rooms_that_only_meet_at_a_corner_leave_no_sliver():
+    # R1 0.3 m right of R0 but above it: their walls do not face each other
+    assert slivers(_spec(), _layout(_spec(), {**VALID, "R1": (4.3, 5.2, 4, 2.5)})) == []
+
+
+def test_a_sliver_against_an_l_room_s_arm_is_found():
+    spec = _spec()
+    layout = _layout(spec, {**VALID, "R1": (4.2, 2.2, 4, 3)})
+    # R1 given an arm running left over R0, 0.3 m above it
+    r1 = next(r for r in layout.rooms if r.id == "R1")
+    turned = replace(r1, arm=(0.0, 5.5, 4.2, 1.5))
+    layout = replace(layout, rooms=tuple(turned if r.id == "R1" else r for r in layout.rooms))
+    found = slivers(spec, layout)
+    assert [v.rooms for v in found] == [("R0", "R1")] and "0.3 m apart along 4 m" in found[0].message
