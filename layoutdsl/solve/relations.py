@@ -996,7 +996,8 @@ def _final_layout(problem: _Problem, geometry: dict[str, Rect], outcome: _Outcom
                   limits: RepairLimits, seed: int, local: bool = False) -> dict[str, Rect] | None:
     """The relations of a zero-stretch round with the sizes brought towards their targets
     (else that round's own rectangles), if they pass `check_start`; None otherwise."""
-    final_options = {pair: (direction,) for pair, direction in outcome.chosen.items()}
+    final_options = _without_implied(problem, {pair: (direction,) for pair, direction in outcome.chosen.items()},
+                                     keep=set())
     final = _solve_model(problem, geometry, final_options, mode="final",
                          deadline=limits.deadline, nodes=limits.final_nodes,
                          seed=seed, orientations=outcome.orientations, local=local)
@@ -1105,6 +1106,7 @@ def _sized_again(problem: _Problem, options: dict[Pair, tuple[str, ...]], orient
     """One final-mode solve of a layout's relations fixed (_relations_fixed), with `gaps` or
     `pulls` (_solve_active); None unless it needs no stretch and its rectangles pass
     check_start against the spec the problem is checked against."""
+    options = _without_implied(problem, options, keep=set(gaps or ()) | set(pulls or ()))
     outcome = _solve_active(problem, options, mode="final", seconds=max(0.05, deadline - time.monotonic()),
                             nodes=nodes, seed=seed, orientations=orientations, turnable=frozenset(),
                             start=None, feasibility_emphasis=False, within=(current, None), gaps=gaps, pulls=pulls)
@@ -1113,6 +1115,42 @@ def _sized_again(problem: _Problem, options: dict[Pair, tuple[str, ...]], orient
     if check_start(problem.checked or problem.spec, outcome.rects):
         return None
     return outcome.rects
+
+
+def _without_implied(problem: _Problem, options: dict[Pair, tuple[str, ...]],
+                     keep: set[Pair]) -> dict[Pair, tuple[str, ...]]:
+    """`options` of fixed relations without the pairs whose relation the others imply.
+
+    With every relation fixed, a left of b and b left of c put a left of c, a wall and b's
+    width apart: the row for (a, c) only repeats what the rows for (a, b) and (b, c) say.
+    Such a pair is left out when a chain of two or more other fixed room-room relations
+    along the same axis leads from one to the other (the transitive reduction of each
+    axis' order); doors, the two boxes of an L, obstacles and the pairs in `keep` always
+    stay. A layout of rooms side by side keeps a few pairs per room instead of all of them
+    (office_floorplanMAIN, 55 boxes: 1485 pairs -> about 245), so the final sizing and each
+    realism pass solve an LP a sixth of the size with the same feasible layouts (a variant's
+    compile after its first layout, seed 0: 6.3 -> 3.7 s). Elastic (repair) rounds keep
+    every pair: there a stretched relation would let an implied one break unpriced."""
+    import networkx as nx
+
+    axes = {"x": nx.DiGraph(), "y": nx.DiGraph()}
+    for pair, allowed in options.items():
+        if len(allowed) != 1 or pair in problem.joins or any(t in problem.obstacles for t in pair):
+            continue
+        a, b = pair
+        direction = allowed[0]
+        axis = "x" if direction in ("left", "right") else "y"
+        first, second = (a, b) if direction in ("left", "below") else (b, a)
+        axes[axis].add_edge(first, second)
+    needed: set[tuple[str, str]] = set()
+    for graph in axes.values():
+        if not nx.is_directed_acyclic_graph(graph):
+            return options
+        needed |= set(nx.transitive_reduction(graph).edges)
+    return {pair: allowed for pair, allowed in options.items()
+            if len(allowed) != 1 or pair in problem.joins or pair in keep
+            or frozenset(pair) in problem.walls or any(t in problem.obstacles for t in pair)
+            or pair in needed or pair[::-1] in needed}
 
 
 def _box_spaces(rects: dict[str, Rect]) -> list:
