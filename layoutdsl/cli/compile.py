@@ -293,9 +293,12 @@ def variant_differences(spec, layouts):
 
 
 def _write_variants_report(spec, seeds: list[int], source: str, layouts, pairwise, from_hints,
-                           outdir: Path, distinct: list[bool] | None = None) -> Path:
+                           outdir: Path, distinct: list[bool] | None = None,
+                           kicks: list[int | None] | None = None) -> Path:
     """NAME-variants.json: each variant's seed and differences, for comparing them later;
-    `distinct` (new arrangements only): whether it lies 0.3 or more from every one before it."""
+    `distinct` (new arrangements only): whether it lies 0.3 or more from every one before it;
+    `derived_kick` (new arrangements only): the kick of its seed's layout it was derived
+    from, null for the seed's own layout (which `--variants 1 --seed S` makes again)."""
     import json
 
     from layoutdsl.emit.atomic import write_text_atomic
@@ -306,6 +309,7 @@ def _write_variants_report(spec, seeds: list[int], source: str, layouts, pairwis
         "variants": [
             {"index": index, "seed": seed, "found": layout is not None,
              "distinct": None if distinct is None else distinct[index - 1],
+             "derived_kick": None if kicks is None else kicks[index - 1],
              "difference_from_hints": None if original is None else round(original, 4)}
             for index, (layout, original, seed) in enumerate(zip(layouts, from_hints, seeds), start=1)
         ],
@@ -358,7 +362,7 @@ def _run_variants(spec, args, options, outdir: Path, formats, sources, out: Outp
     if outdir is not None and count:
         try:
             paths.append(_write_variants_report(spec, result.seeds, args.variants_from, layouts,
-                                                pairwise, from_hints, outdir, result.distinct))
+                                                pairwise, from_hints, outdir, result.distinct, result.kicks))
         except OSError as error:
             return out.finish(out.cannot_write(getattr(error, "filename", None) or outdir, error))
     out.wrote(*paths)

@@ -34,6 +34,19 @@ WORK = {
                                     #   over all 80 graphs it cost more than it saved: 5 graphs sized
                                     #   early from 1-2 m now took more rounds (cml_new_17 1.7 -> 8.5 s,
                                     #   cml_new_220 1.3 -> 9.7 s), cml_new_270 alone gained (39 -> 33 s)
+    # a derived arrangement (generator.derive): a found layout's state kicked by trades, one
+    # chain, sized like a round's best. Measured from seed 0's state, seconds per layout
+    # 0.3 or more from its origin (kicks tried): office_floorplanMAIN 3 trades and 3000 moves
+    # a room 5.1 s (56), 4 and 6000 10.8 s (24), 4 and 12000 8.5 s (24), 2 and 6000 15.8 s
+    # (24), half this temperature 6.3 s (32); school_wilbraham 3 / 3000 3.6 s, 4 / 6000 4.2 s
+    # (24 each); office_floorplanLOWER none (its kicks that find a layout again lie 0.22-0.26
+    # from it; 5 trades find none). A chain at the rounds' own start temperature (20x) lost
+    # the layout and found none.
+    "derive_trades": 3,
+    "derive_moves_per_room": 3000,
+    "derive_temperature": 0.001,
+    "derive_min_difference": 0.3,  # a derived state nearer its origin is not sized (variants' MIN_PAIRWISE)
+    "derive_repair_rounds": 2,     # fewer than a round's: one sizing failed after 43 s with 4, 1.8 s with 2
     "repair_rounds": 4,          # repair rounds of an annealed state before the next round anneals
     "repair_stalls": 1,          # ... or stalled rounds
     "final_nodes": 2000,         # the final sizing LP/MIP with every relation fixed

@@ -35,9 +35,11 @@ import time
 from dataclasses import dataclass, replace
 
 from layoutdsl.compile import initial, schedule, shapes
+from layoutdsl.compile.moves import traded
 from layoutdsl.compile.budgets import WORK
 from layoutdsl.compile.representation import Rooms
 from layoutdsl.layout import lshape
+from layoutdsl.layout.difference import difference
 from layoutdsl.layout.geometry import Rect
 from layoutdsl.solve.relations import (
     RepairLimits,
@@ -88,6 +90,18 @@ class Generated:
     """Without rectangles, when the rounds ran out (not the clock): where the schedule
     stopped, so `generate(..., resume=...)` goes on with the next round instead of doing
     the same rounds again."""
+    origin: Origin | None = None
+    """With annealed (or derived) rectangles: the state they were sized from, from which
+    `derive` makes new arrangements near this one."""
+
+
+@dataclass(frozen=True)
+class Origin:
+    """The state an annealed layout was sized from, and the doors each turn of corridors
+    was made for (replayed, as in Resume, since a Spec does not cross processes)."""
+
+    turns: tuple[tuple[tuple[str, str], ...], ...]
+    state: tuple
 
 
 @dataclass(frozen=True)
@@ -177,13 +191,7 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
     sized: set[tuple] = set()
     turns: list[tuple[tuple[str, str], ...]] = []
     if resume is not None:
-        # the turns made again give the spec the rounds searched and the rooms they turned
-        turned_spec = spec
-        for doors in resume.turns:
-            turned_spec, made = shapes.with_turns(turned_spec, list(doors))
-            turned += made
-        if resume.turns:
-            current = _Searched.of(turned_spec, lshape.seeds_spec(turned_spec), outline, soft)
+        current, turned = _replayed(current, resume.turns, outline, soft)
         best = [resume.best] if resume.best is not None else []
         carried = [resume.carried] if resume.carried is not None else []
         done_rounds, moves, turns, sized = resume.rounds, resume.moves, list(resume.turns), set(resume.sized)
@@ -230,7 +238,7 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
                                                     or target.boundary.h > boundary.h + 1e-9):
                     grown = (target.boundary.w, target.boundary.h)
                 return Generated(rects, target, "annealed", done_rounds, moves, grown=grown,
-                                 turned=tuple(turned))
+                                 turned=tuple(turned), origin=Origin(tuple(turns), found.state))
             if time.monotonic() >= limits.deadline:
                 return ended(cut_off=True)
         if found.round in WORK["turn_after_rounds"]:
@@ -249,6 +257,73 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
     return ended()
 
 
+def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = None,
+           grow_boundary: bool = False) -> Generated:
+    """A new arrangement near a found one: its state (`origin`, from `Generated.origin`)
+    kicked by WORK["derive_trades"] random trades of two rooms (moves.traded), then one
+    chain of annealing from a twentieth of the rounds' start temperature, cool enough to
+    keep most of the layout and warm enough to mend what the trades broke. Its best state is
+    sized like a round's when it lies within repair_max_violation_m of a layout and at least
+    derive_min_difference (layout.difference) from the origin; otherwise there are no
+    rectangles, and another seed is another kick. A run is work-limited like `generate`:
+    the same spec, origin and seed give the same rectangles.
+
+    Variants use it once a seed has found a layout: a derived arrangement costs one chain
+    and a short sizing, where a new seed on a plan with cycles needs 3-8 rounds."""
+    if spec.boundary is None or not spec.rooms:
+        return Generated(None, spec, "")
+    if deadline is None:
+        deadline = time.monotonic() + 3600.0
+    limits = RepairLimits(deadline=deadline, round_nodes=WORK["repair_round_nodes"],
+                          final_nodes=WORK["final_nodes"])
+    boundary = spec.boundary
+    outline = (boundary.w, boundary.h)
+    soft = grow_boundary or boundary.chosen
+    current, turned = _replayed(_Searched.of(spec, lshape.seeds_spec(spec), outline, soft), origin.turns,
+                                outline, soft)
+    rng = random.Random(f"derive:{seed}")
+    start = traded(origin.state, WORK["derive_trades"], rng)
+    chain_moves = WORK["derive_moves_per_room"] * len(current.rooms.ids)
+    found = schedule.one_chain(current.rooms, start, rng.randrange(2**31), chain_moves, deadline,
+                               WORK["derive_temperature"])
+    if found is None:
+        return Generated(None, current.spec, "", 1, 0, cut_off=True, turned=tuple(turned))
+    geometry = current.rooms.geometry(found.state)
+    if found.violation <= WORK["repair_max_violation_m"] and \
+            _difference(current.rooms.geometry(origin.state), geometry) >= WORK["derive_min_difference"]:
+        target = _drawn_round(current.spec, geometry) if soft else current.spec
+        rects = _sized(target, geometry, rng, seed, limits, rounds=WORK["derive_repair_rounds"])
+        if rects is not None:
+            grown = None
+            if target.boundary is not None and (target.boundary.w > boundary.w + 1e-9
+                                                or target.boundary.h > boundary.h + 1e-9):
+                grown = (target.boundary.w, target.boundary.h)
+            return Generated(rects, target, "derived", 1, found.moves, grown=grown, turned=tuple(turned),
+                             origin=Origin(origin.turns, found.state))
+    return Generated(None, current.spec, "", 1, found.moves, cut_off=time.monotonic() >= deadline,
+                     turned=tuple(turned))
+
+
+def _difference(a: dict[str, Rect], b: dict[str, Rect]) -> float:
+    def centres(geometry: dict[str, Rect]) -> dict[str, tuple[float, float]]:
+        return {room: (x + w / 2, y + h / 2) for room, (x, y, w, h) in geometry.items()}
+
+    return difference(centres(a), centres(b))
+
+
+def _replayed(current: _Searched, turns, outline: tuple[float, float], soft: bool) -> tuple[_Searched, list[str]]:
+    """What the rounds searched after the given turns of corridors (shapes.with_turns),
+    made again on `current`, and the rooms they turned."""
+    turned: list[str] = []
+    turned_spec = current.spec
+    for doors in turns:
+        turned_spec, made = shapes.with_turns(turned_spec, list(doors))
+        turned += made
+    if turns:
+        current = _Searched.of(turned_spec, lshape.seeds_spec(turned_spec), outline, soft)
+    return current, turned
+
+
 @dataclass(frozen=True)
 class _Searched:
     """The spec the rounds search, its drawn spec (lshape.seeds_spec) and their Rooms."""
@@ -265,10 +340,10 @@ class _Searched:
 
 
 def _sized(spec: Spec, geometry: dict[str, Rect], rng: random.Random, seed: int,
-           limits: RepairLimits) -> dict[str, Rect] | None:
+           limits: RepairLimits, rounds: int = WORK["repair_rounds"]) -> dict[str, Rect] | None:
     """The sizing stage on a packed geometry (of the drawn spec: an L's arm a room): a few
     rounds only, since another round of annealing is cheaper than a long repair."""
-    limits = replace(limits, max_rounds=WORK["repair_rounds"], max_stalls=WORK["repair_stalls"])
+    limits = replace(limits, max_rounds=rounds, max_stalls=WORK["repair_stalls"])
     geometry = _with_pinned_points(spec, geometry)
     problem = problem_of(spec)
     if spec.arms:
@@ -303,4 +378,4 @@ def _embedding_seed(seed: int, round_index: int, chain: int) -> int:
     return random.Random(f"embedding:{seed}:{round_index}:{chain}").randrange(2**31)
 
 
-__all__ = ["Generated", "Resume", "generate"]
+__all__ = ["Generated", "Origin", "Resume", "derive", "generate"]

@@ -12,11 +12,15 @@ order; the shares add up to 1):
 - turn: one room turned by a quarter.
 
 Adding a move is adding a kind here: a share in MOVES and a branch in `propose`.
+
+`traded` is not one of them: it is the kick that starts a derived arrangement
+(generator.derive), a few trades made at once on a state that is already a layout.
 """
 
 from __future__ import annotations
 
 import math
+import random
 
 import numpy as np
 from numba import njit
@@ -142,3 +146,17 @@ def _turn(i, turned, partner):
     turned[i] = not turned[i]
     if partner[i] >= 0:
         turned[partner[i]] = not turned[partner[i]]
+
+
+def traded(state, trades: int, rng: random.Random):
+    """A copy of the state with `trades` random pairs of rooms traded (each swaps places in
+    both sequences, the `trade` move): the kick from which generator.derive anneals a new
+    arrangement near a found one."""
+    p, q, turned, long_side, short_side = (part.copy() for part in state)
+    n = p.shape[0]
+    for _ in range(trades):
+        a, b = rng.randrange(n), rng.randrange(n)
+        for seq in (p, q):
+            at_a, at_b = int(np.flatnonzero(seq == a)[0]), int(np.flatnonzero(seq == b)[0])
+            seq[at_a], seq[at_b] = b, a
+    return p, q, turned, long_side, short_side

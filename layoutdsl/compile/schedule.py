@@ -71,15 +71,34 @@ def chain_seeds(seed: int, round_index: int) -> list[int]:
     return [draw.randrange(2**31) for _ in range(CHAINS)]
 
 
-def run_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, cancel: np.ndarray):
+def run_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, cancel: np.ndarray,
+              start_temperature: float = START_TEMPERATURE):
     """One chain from `start` (the kernel releases the GIL)."""
     scale = rooms.width + rooms.height
     give_up_step = int(GIVE_UP_AT * moves)
     return _chain(rooms.target_long, rooms.target_short, rooms.bounds, rooms.edge_a, rooms.edge_b,
                   rooms.need, rooms.join, rooms.group_end, rooms.door_ptr, rooms.door_to, rooms.on_boundary, rooms.width,
                   rooms.height, rooms.wall, rooms.outline_given, rooms.partner, kernel_seed, moves,
-                  START_TEMPERATURE * scale, END_TEMPERATURE * scale, give_up_step, GIVE_UP_M,
+                  start_temperature * scale, END_TEMPERATURE * scale, give_up_step, GIVE_UP_M,
                   cancel, *start)
+
+
+def one_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, deadline: float | None,
+              start_temperature: float) -> Found | None:
+    """A single chain from `start` at its own start temperature (x the outline's half
+    perimeter), in this thread: a derived arrangement's (generator.derive), which runs
+    beside other variants and needs no second core. None when `deadline` cut it off."""
+    cancel = np.zeros(1, dtype=np.int64)
+    timer = _cancel_at(deadline, cancel)
+    try:
+        p, q, turned, long_side, short_side, violation, cost, done = run_chain(
+            rooms, start, kernel_seed, moves, cancel, start_temperature)
+    finally:
+        if timer is not None:
+            timer.cancel()
+    if cancel[0]:
+        return None
+    return Found((p, q, turned, long_side, short_side), float(violation), float(cost), 0, 0, int(done))
 
 
 def moves_of_round(rooms: Rooms, round_index: int) -> int:

@@ -36,6 +36,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, replace
 from itertools import combinations
 from pathlib import Path
+from typing import NamedTuple
 
 from layoutdsl.compile.explain import variants_not_distinct
 from layoutdsl.diagnostics import Diagnostic
@@ -75,6 +76,9 @@ class VariantsResult:
     where no layout was found). None for variants from the hints, which are not compared."""
     diagnostics: tuple[Diagnostic, ...] = ()
     """W906 when fewer than N new arrangements were MIN_PAIRWISE apart."""
+    kicks: list[int | None] | None = None
+    """New arrangements: per variant, the kick of its seed's layout it was derived from
+    (generator.derive), or None for the seed's own layout."""
 
 
 def chosen_room(spec: Spec) -> str | None:
@@ -140,13 +144,26 @@ _SPEC_FOR_WORKERS: Spec | None = None
 """The spec, inherited by forked workers (AST spans hold mapping proxies, which don't pickle)."""
 
 
-def _solve_variant(job: tuple):
-    """Compile one variant in a worker: its layout, the position it kept (or None) and where
-    its generator stopped (_compile_variant)."""
-    variant_seed, options, point, source, rounds, resume = job
+class Job(NamedTuple):
+    """One try of a variant: a seed (for a derived arrangement, the seed its origin came
+    from), how it is made, and for a new arrangement the tier's rounds and where the seed's
+    last tier stopped (generator.Resume); for a derived one (source "derived") the origin
+    (generator.Origin) and which kick of it."""
+
+    seed: int
+    options: object
+    point: tuple[str, float, float] | None
+    source: str
+    rounds: int | None = None
+    resume: object = None
+    derived: int | None = None
+
+
+def _solve_variant(job: Job):
+    """Compile one variant in a worker (_compile_variant)."""
     spec = _SPEC_FOR_WORKERS
     assert spec is not None
-    return _compile_variant(spec, variant_seed, options, point, source, rounds=rounds, resume=resume)
+    return _compile_variant(spec, job)
 
 
 ROUND_TIERS: tuple[int | None, ...] = (3, 5, None)
@@ -161,18 +178,19 @@ VARIANT_TIME_SHARE = 0.75
 """Share of a variant's time limit its generator may use before it is cut off."""
 
 
-def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str = "graph",
-                     rounds: int | None = None, resume=None):
-    """(layout, position kept, None) of one variant, or (None, None, resume).
+def _compile_variant(spec: Spec, job: Job):
+    """(layout, position kept, None, origin) of one variant, or (None, None, resume, None).
 
-    `rounds`: the generator gives up after so many rounds of its schedule instead of its
-    full budget (a tier of ROUND_TIERS): another seed is cheaper than the slowest ones. The
-    `resume` it returns (generator.Resume; None if the clock cut it off) lets the seed's
-    next tier go on from there instead of making those rounds again.
+    `job.rounds`: the generator gives up after so many rounds of its schedule instead of
+    its full budget (a tier of ROUND_TIERS): another seed is cheaper than the slowest ones.
+    The `resume` it returns (generator.Resume; None if the clock cut it off) lets the seed's
+    next tier go on from there instead of making those rounds again. The `origin`
+    (generator.Origin) of a layout found lets later jobs derive arrangements from it.
     """
     from layoutdsl.compile import compile_spec
-    from layoutdsl.compile.generator import generate
+    from layoutdsl.compile.generator import derive, generate
 
+    variant_seed, options, point, source, rounds, resume = job[:6]
     began = time.monotonic()
     deadline = began + options.time_limit
     from_hints = source == "hints"
@@ -194,22 +212,33 @@ def _compile_variant(spec: Spec, variant_seed: int, options, point, source: str 
         # probe, which translates the whole model to SCIP once more (measured on
         # school_wilbraham: 1.3 of a variant's 5.1 s); the spec's feasibility is not in
         # question for a variant, and one that finds no start gives way to another seed
-        generated = generate(variant_spec, seed=variant_seed, use_hints=from_hints, perturb_hints=from_hints,
-                             deadline=time.monotonic() + VARIANT_TIME_SHARE * limit,
-                             grow_boundary=options.grow_boundary,
-                             max_rounds=rounds,
-                             resume=resume if attempt_point is None else None)
+        if source == "derived":
+            generated = derive(variant_spec, resume, seed=_kick_seed(variant_seed, job.derived),
+                               deadline=time.monotonic() + VARIANT_TIME_SHARE * limit,
+                               grow_boundary=options.grow_boundary)
+        else:
+            generated = generate(variant_spec, seed=variant_seed, use_hints=from_hints, perturb_hints=from_hints,
+                                 deadline=time.monotonic() + VARIANT_TIME_SHARE * limit,
+                                 grow_boundary=options.grow_boundary,
+                                 max_rounds=rounds,
+                                 resume=resume if attempt_point is None else None)
         rects, variant_spec = generated.rects, generated.spec
         if rects is None:
-            if attempt_point is None:
+            if attempt_point is None and source != "derived":
                 stopped = generated.resume
             continue
         variant_options = replace(options, time_limit=max(0.5, limit - (time.monotonic() - attempt_began)),
                                   seed=variant_seed, quiet=True, search=False)
         result = compile_spec(variant_spec, variant_options, start=rects, explain_infeasible=False)
         if result.layout is not None:
-            return result.layout, attempt_point, None
-    return None, None, stopped
+            return result.layout, attempt_point, None, generated.origin
+    return None, None, stopped, None
+
+
+def _kick_seed(seed: int, kick: int | None) -> int:
+    """The seed of a derived arrangement's kick: from the seed its origin came from and the
+    kick's number, so two origins never share their kicks."""
+    return random.Random(f"kick:{seed}:{kick}").randrange(2**31)
 
 
 def compile_variants(
@@ -243,9 +272,10 @@ def compile_variants(
         options = SolveOptions.from_settings(spec.settings)
     workers = max(1, min(workers or default_workers(), n))
     distinct: list[bool] | None = None
+    kicks: list[int | None] | None = None
     diagnostics: tuple[Diagnostic, ...] = ()
     if source == "graph":
-        results, seeds, distinct = _new_arrangements(spec, n, seed, options, workers, progress)
+        results, seeds, distinct, kicks = _new_arrangements(spec, n, seed, options, workers, progress)
         close = [index for index, ((layout, _), kept) in enumerate(zip(results, distinct), start=1)
                  if layout is not None and not kept]
         if close:
@@ -258,16 +288,16 @@ def compile_variants(
             if room is not None and spec.boundary is not None:
                 x, y = variant_point(spec, seed, index)
                 point = (room, x, y)
-            jobs.append((seed + index - 1, options, point, source, None, None))
-        results = [(layout, point) for layout, point, _ in _run_jobs(spec, jobs, workers)]
-        seeds = [job[0] for job in jobs]
+            jobs.append(Job(seed + index - 1, options, point, source))
+        results = [(layout, point) for layout, point, _, _ in _run_jobs(spec, jobs, workers)]
+        seeds = [job.seed for job in jobs]
     layouts = [layout for layout, _ in results]
     positions = [point for _, point in results]
     found = [layout for layout in layouts if layout is not None]
     paths: list[Path] = []
     if outdir is not None:
         paths = _write(spec, layouts, Path(outdir), formats, robot_room, world_options or {})
-    return VariantsResult(layouts, seeds, diversity(found), paths, positions, distinct, diagnostics)
+    return VariantsResult(layouts, seeds, diversity(found), paths, positions, distinct, diagnostics, kicks)
 
 
 MIN_PAIRWISE = 0.3
@@ -278,6 +308,12 @@ SEEDS_PER_VARIANT = 3
 """Quick tries (one seed each) new arrangements may take per variant asked for beyond the
 first, before the seeds whose quick try found nothing get their full construction."""
 
+DERIVED_PER_VARIANT = 12
+"""Kicks of the first layout found (generator.derive) tried per variant still missing,
+before the quick tries go on; when the first this many keep none, no more are tried.
+Measured on office_floorplanMAIN: 8 kicks in 56 gave a layout 0.3 or more from their
+origin, on school_wilbraham 3 in 24, on office_floorplanLOWER none in 24."""
+
 QUICK_FAILURES = 2
 """...and quick tries that may find nothing per variant asked for: a plan whose quick tries
 mostly fail (school_hendersonhighschool: 3 of 20 seeds constructed in two geometries) goes
@@ -286,20 +322,24 @@ on to full constructions without spending its whole quick budget first."""
 
 def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
                       progress: Callable[[str], None] | None = None
-                      ) -> tuple[list, list[int | None], list[bool]]:
-    """(layout, None) of each of N new arrangements, the seed each came from, and whether it
-    lies MIN_PAIRWISE or more from every one before it.
+                      ) -> tuple[list, list[int | None], list[bool], list[int | None]]:
+    """(layout, None) of each of N new arrangements, the seed each came from, whether it
+    lies MIN_PAIRWISE or more from every one before it, and which kick of its seed's layout
+    it was derived from (None: the seed's own).
 
     Seeds seed, seed + 1, ... get a quick try each (_compile_variant), `workers` at a time
     and a few queued, so no core waits for a slow seed; their outcomes are taken in seed
     order, and one is kept when it lies at least MIN_PAIRWISE from every variant kept
-    before it, until N are kept, 1 + SEEDS_PER_VARIANT * (N - 1) seeds are used or
-    QUICK_FAILURES * N quick tries found nothing. Then the seeds whose tries found nothing
-    go on, in seed order, with the rounds of each later tier of ROUND_TIERS in turn, until
-    N are kept; then layouts within MIN_PAIRWISE of a kept one fill any still missing (None
-    where even those run out).
+    before it. Once one is kept, kicks 1, 2, ... of its layout (generator.derive: a few
+    rooms traded, one chain, a short sizing) are tried the same way, DERIVED_PER_VARIANT
+    per variant still missing: one chain costs less than the 3-8 rounds a new seed needs
+    on a plan with cycles. The quick tries then go on where they stopped, until N are kept,
+    1 + SEEDS_PER_VARIANT * (N - 1) seeds are used or QUICK_FAILURES * N quick tries found
+    nothing. Then the seeds whose tries found nothing go on, in seed order, with the rounds
+    of each later tier of ROUND_TIERS in turn, until N are kept; then layouts within
+    MIN_PAIRWISE of a kept one fill any still missing (None where even those run out).
 
-    Taking outcomes in seed order makes the variants a function of the spec and seed
+    Taking outcomes in job order makes the variants a function of the spec and seed
     wherever each variant's own stopping rule is, however the workers' timing falls; and
     `--variants 1 --seed S` (the tiers of S, resumed one from another: one full
     construction) gives the variant of seed S again. Measured on school_wilbraham (2
@@ -309,21 +349,27 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     """
     from layoutdsl.layout.difference import difference, layout_centres
 
-    kept: list[tuple[int, Layout, dict]] = []
-    close: list[tuple[int, Layout]] = []
+    kept: list[tuple[int, Layout, dict, int | None]] = []
+    close: list[tuple[int, Layout, int | None]] = []
     failed: list[tuple[int, object]] = []
+    origins: list[tuple[int, object]] = []
 
-    def take(variant_seed: int, layout: Layout | None, how: str, resume=None) -> None:
+    def take(job: Job, outcome: tuple, how: str) -> None:
+        layout, _, resume, origin = outcome
         if layout is None:
-            failed.append((variant_seed, resume))
+            if job.source != "derived":
+                failed.append((job.seed, resume))
             return
         centres = layout_centres(layout)
-        if all(difference(centres, other) >= MIN_PAIRWISE for _, _, other in kept):
-            kept.append((variant_seed, layout, centres))
+        if all(difference(centres, other) >= MIN_PAIRWISE for _, _, other, _ in kept):
+            kept.append((job.seed, layout, centres, job.derived))
+            if origin is not None and not origins and job.source != "derived":
+                origins.append((job.seed, origin))
             if progress is not None:
-                progress(f"variant {len(kept)} of {n}: seed {variant_seed} ({how})")
+                what = f"seed {job.seed}" + (f", kick {job.derived} of its layout" if job.derived else "")
+                progress(f"variant {len(kept)} of {n}: {what} ({how})")
         else:
-            close.append((variant_seed, layout))
+            close.append((job.seed, layout, job.derived))
 
     def enough() -> bool:
         return len(kept) >= n
@@ -331,28 +377,61 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     def quick_done() -> bool:
         return enough() or len(failed) >= QUICK_FAILURES * n
 
-    quick = [(s, options, None, "graph", ROUND_TIERS[0], None)
-             for s in range(seed, seed + 1 + SEEDS_PER_VARIANT * (n - 1))]
-    for job, (layout, _, resume) in _in_seed_order(spec, quick, workers, quick_done):
-        take(job[0], layout, "quick try", resume)
+    derived_from: list[int] = []
+
+    def derive_from_first() -> None:
+        # once, from the first seed's layout kept: one chain a try instead of whole rounds
+        if derived_from or not origins or enough():
+            return
+        base_seed, origin = origins[0]
+        derived_from.append(base_seed)
+        derived = [Job(base_seed, options, None, "derived", resume=origin, derived=k)
+                   for k in range(1, 1 + DERIVED_PER_VARIANT * (n - len(kept)))]
+        before = len(kept)
+        tried = 0
+
+        def hopeless() -> bool:
+            # a plan whose kicks keep nothing (office_floorplanLOWER: they come back 0.22-0.26
+            # from their origin) goes back to seeds soon
+            return tried >= DERIVED_PER_VARIANT and len(kept) == before
+
+        for job, outcome in _in_seed_order(spec, derived, workers, lambda: enough() or hopeless()):
+            tried += 1
+            take(job, outcome, "derived")
+
+    quick = [Job(s, options, None, "graph", ROUND_TIERS[0]) for s in range(seed, seed + 1 + SEEDS_PER_VARIANT * (n - 1))]
+    taken = 0
+    for job, outcome in _in_seed_order(spec, quick, workers, lambda: quick_done() or bool(origins)):
+        taken += 1
+        take(job, outcome, "quick try")
+    derive_from_first()
+    for job, outcome in _in_seed_order(spec, quick[taken:], workers, quick_done):
+        take(job, outcome, "quick try")
     for tier in ROUND_TIERS[1:]:
         if enough() or not failed:
             break
         # each seed goes on from where its last tier stopped (one the clock cut off starts over)
-        longer = [(s, options, None, "graph", tier, resume) for s, resume in failed]
+        longer = [Job(s, options, None, "graph", tier, resume) for s, resume in failed]
         failed.clear()
         how = "full construction" if tier is None else f"{tier} rounds"
-        for job, (layout, _, resume) in _in_seed_order(spec, longer, workers, enough):
-            take(job[0], layout, how, resume)
-    chosen = [(s, layout) for s, layout, _ in kept]
-    for variant_seed, layout in close[:n - len(kept)]:
-        chosen.append((variant_seed, layout))
+        consumed = 0
+        for job, outcome in _in_seed_order(spec, longer, workers,
+                                           lambda: enough() or (bool(origins) and not derived_from)):
+            consumed += 1
+            take(job, outcome, how)
+        derive_from_first()
+        for job, outcome in _in_seed_order(spec, longer[consumed:], workers, enough):
+            take(job, outcome, how)
+    chosen = [(s, layout, kick) for s, layout, _, kick in kept]
+    for variant_seed, layout, kick in close[:n - len(kept)]:
+        chosen.append((variant_seed, layout, kick))
         if progress is not None:
             progress(f"variant {len(chosen)} of {n}: seed {variant_seed}, within {MIN_PAIRWISE:g} of an "
                      "earlier variant (no arrangement farther from them among the seeds tried)")
     distinct = [True] * len(kept) + [False] * (n - len(kept))
-    chosen += [(None, None)] * (n - len(chosen))
-    return [(layout, None) for _, layout in chosen], [s for s, _ in chosen], distinct
+    chosen += [(None, None, None)] * (n - len(chosen))
+    return ([(layout, None) for _, layout, _ in chosen], [s for s, _, _ in chosen], distinct,
+            [kick for _, _, kick in chosen])
 
 
 LOOKAHEAD = 2
@@ -367,8 +446,7 @@ def _in_seed_order(spec: Spec, jobs: list, workers: int, enough: Callable[[], bo
         for job in jobs:
             if enough():
                 return
-            variant_seed, options, point, source, rounds, resume = job
-            yield job, _compile_variant(spec, variant_seed, options, point, source, rounds=rounds, resume=resume)
+            yield job, _compile_variant(spec, job)
         return
     global _SPEC_FOR_WORKERS
     _SPEC_FOR_WORKERS = spec
