@@ -134,10 +134,7 @@ def generate(spec: Spec, *, seed: int = 0, deadline: float | None = None, use_hi
     whose rounds are not made again."""
     if spec.boundary is None or not spec.rooms:
         return Generated(None, spec, "")
-    if deadline is None:
-        deadline = time.monotonic() + 3600.0
-    limits = RepairLimits(deadline=deadline, round_nodes=WORK["repair_round_nodes"],
-                          final_nodes=WORK["final_nodes"])
+    limits = _limits(deadline)
     rng = random.Random(seed)
     drawn = lshape.seeds_spec(spec)
     rounds = max_rounds if max_rounds is not None else WORK["max_rounds"]
@@ -233,11 +230,7 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
             target = _drawn_round(current.spec, geometry) if soft else current.spec
             rects = _sized(target, geometry, rng, seed, limits)
             if rects is not None:
-                grown = None
-                if target.boundary is not None and (target.boundary.w > boundary.w + 1e-9
-                                                    or target.boundary.h > boundary.h + 1e-9):
-                    grown = (target.boundary.w, target.boundary.h)
-                return Generated(rects, target, "annealed", done_rounds, moves, grown=grown,
+                return Generated(rects, target, "annealed", done_rounds, moves, grown=_grown(target, boundary),
                                  turned=tuple(turned), origin=Origin(tuple(turns), found.state))
             if time.monotonic() >= limits.deadline:
                 return ended(cut_off=True)
@@ -272,10 +265,8 @@ def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = No
     and a short sizing, where a new seed on a plan with cycles needs 3-8 rounds."""
     if spec.boundary is None or not spec.rooms:
         return Generated(None, spec, "")
-    if deadline is None:
-        deadline = time.monotonic() + 3600.0
-    limits = RepairLimits(deadline=deadline, round_nodes=WORK["repair_round_nodes"],
-                          final_nodes=WORK["final_nodes"])
+    limits = _limits(deadline)
+    deadline = limits.deadline
     boundary = spec.boundary
     outline = (boundary.w, boundary.h)
     soft = grow_boundary or boundary.chosen
@@ -294,14 +285,24 @@ def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = No
         target = _drawn_round(current.spec, geometry) if soft else current.spec
         rects = _sized(target, geometry, rng, seed, limits, rounds=WORK["derive_repair_rounds"])
         if rects is not None:
-            grown = None
-            if target.boundary is not None and (target.boundary.w > boundary.w + 1e-9
-                                                or target.boundary.h > boundary.h + 1e-9):
-                grown = (target.boundary.w, target.boundary.h)
-            return Generated(rects, target, "derived", 1, found.moves, grown=grown, turned=tuple(turned),
+            return Generated(rects, target, "derived", 1, found.moves, grown=_grown(target, boundary),
+                             turned=tuple(turned),
                              origin=Origin(origin.turns, found.state))
     return Generated(None, current.spec, "", 1, found.moves, cut_off=time.monotonic() >= deadline,
                      turned=tuple(turned))
+
+
+def _limits(deadline: float | None) -> RepairLimits:
+    return RepairLimits(deadline=time.monotonic() + 3600.0 if deadline is None else deadline,
+                        round_nodes=WORK["repair_round_nodes"], final_nodes=WORK["final_nodes"])
+
+
+def _grown(target: Spec, boundary) -> tuple[float, float] | None:
+    """(width, height) of the boundary drawn round a packing when beyond the spec's own."""
+    drawn = target.boundary
+    if drawn is not None and (drawn.w > boundary.w + 1e-9 or drawn.h > boundary.h + 1e-9):
+        return (drawn.w, drawn.h)
+    return None
 
 
 def _difference(a: dict[str, Rect], b: dict[str, Rect]) -> float:
