@@ -5,7 +5,9 @@ Two sources of variants:
 - "graph" (the default): each variant is a NEW arrangement generated from the room graph
   alone (layoutdsl.generate), ignoring the spec's hints, so variants differ from the
   original plan and from one another: seeds seed, seed + 1, ... are tried in turn and a
-  layout is kept when it differs from every one kept before it (_new_arrangements);
+  layout is kept when it differs from every one kept before it (_new_arrangements); once
+  one is kept, arrangements derived from it (generator.derive: a kick and one chain) are
+  tried before more seeds;
 - "hints": as before issue 11, for comparison: the first layout is repaired from the hints
   perturbed by the seed, and (as in the thesis) a chosen room, an entrance if there is
   one, gets a `Position` at another point of the boundary per variant (dropped again if that
