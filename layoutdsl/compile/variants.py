@@ -316,6 +316,12 @@ before the quick tries go on; when the first this many keep none, no more are tr
 Measured on office_floorplanMAIN: 8 kicks in 56 gave a layout 0.3 or more from their
 origin, on school_wilbraham 3 in 24, on office_floorplanLOWER none in 24."""
 
+FIRST_FAILURES = 2
+"""Quick tries a worker that may find nothing before any layout is kept, before the seeds
+that failed go on with more rounds. Measured on office_floorplanMAIN (`--variants 25`,
+2 workers): with QUICK_FAILURES x N (50) the first layout came after 126 s of failing quick
+tries, and all 25 after 342 s."""
+
 QUICK_FAILURES = 2
 """...and quick tries that may find nothing per variant asked for: a plan whose quick tries
 mostly fail (school_hendersonhighschool: 3 of 20 seeds constructed in two geometries) goes
@@ -401,29 +407,41 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
             tried += 1
             take(job, outcome, "derived")
 
+    def tiers(until_first: bool) -> None:
+        # the seeds whose last try found nothing, with each later tier's rounds in turn, each
+        # going on from where its last tier stopped (one the clock cut off starts over);
+        # `until_first`: only until a first layout is kept (the next ones are derived)
+        for tier in ROUND_TIERS[1:]:
+            if enough() or not failed or (until_first and origins):
+                break
+            longer = [Job(s, options, None, "graph", tier, resume) for s, resume in failed]
+            failed.clear()
+            how = "full construction" if tier is None else f"{tier} rounds"
+            consumed = 0
+            for job, outcome in _in_seed_order(spec, longer, workers,
+                                               lambda: enough() or (bool(origins) and not derived_from)):
+                consumed += 1
+                take(job, outcome, how)
+            derive_from_first()
+            for job, outcome in _in_seed_order(spec, longer[consumed:], workers, enough):
+                take(job, outcome, how)
+
     quick = [Job(s, options, None, "graph", ROUND_TIERS[0]) for s in range(seed, seed + 1 + SEEDS_PER_VARIANT * (n - 1))]
     taken = 0
-    for job, outcome in _in_seed_order(spec, quick, workers, lambda: quick_done() or bool(origins)):
+    # before any layout, a plan whose quick tries fail goes deeper after FIRST_FAILURES of
+    # them a worker, whatever N: more quick tries would only delay the first layout, from
+    # which the rest are derived
+    for job, outcome in _in_seed_order(spec, quick, workers,
+                                       lambda: quick_done() or bool(origins)
+                                       or len(failed) >= FIRST_FAILURES * workers):
         taken += 1
         take(job, outcome, "quick try")
     derive_from_first()
+    if not origins:
+        tiers(until_first=True)
     for job, outcome in _in_seed_order(spec, quick[taken:], workers, quick_done):
         take(job, outcome, "quick try")
-    for tier in ROUND_TIERS[1:]:
-        if enough() or not failed:
-            break
-        # each seed goes on from where its last tier stopped (one the clock cut off starts over)
-        longer = [Job(s, options, None, "graph", tier, resume) for s, resume in failed]
-        failed.clear()
-        how = "full construction" if tier is None else f"{tier} rounds"
-        consumed = 0
-        for job, outcome in _in_seed_order(spec, longer, workers,
-                                           lambda: enough() or (bool(origins) and not derived_from)):
-            consumed += 1
-            take(job, outcome, how)
-        derive_from_first()
-        for job, outcome in _in_seed_order(spec, longer[consumed:], workers, enough):
-            take(job, outcome, how)
+    tiers(until_first=False)
     chosen = [(s, layout, kick) for s, layout, _, kick in kept]
     for variant_seed, layout, kick in close[:n - len(kept)]:
         chosen.append((variant_seed, layout, kick))
