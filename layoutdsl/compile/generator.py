@@ -39,7 +39,7 @@ from layoutdsl.compile.moves import traded
 from layoutdsl.compile.budgets import WORK
 from layoutdsl.compile.representation import Rooms
 from layoutdsl.layout import lshape
-from layoutdsl.layout.difference import difference
+from layoutdsl.layout.difference import difference, rect_centres
 from layoutdsl.layout.geometry import Rect
 from layoutdsl.solve.relations import (
     RepairLimits,
@@ -177,18 +177,16 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
     soft = grow_boundary or boundary.chosen
     # what the rounds search: the spec, its drawn spec (an L's arm a room) and their rooms;
     # a corridor that turns a corner (shapes.with_turns) changes all three
-    current = _Searched.of(spec, drawn, outline, soft)
+    current, turned = _replayed(spec, resume.turns if resume is not None else (), outline, soft, drawn)
     best: list = []
     carried: list = []
     done_rounds = moves = 0
-    turned: list[str] = []
     # states the sizing stage already failed on: a round whose chains all end where they
     # started (chain 0 starts from the best state) hands the same state back, and its
     # sizing would fail the same way again (measured: 17 s of cml_synth_121's 48)
     sized: set[tuple] = set()
     turns: list[tuple[tuple[str, str], ...]] = []
     if resume is not None:
-        current, turned = _replayed(current, resume.turns, outline, soft)
         best = [resume.best] if resume.best is not None else []
         carried = [resume.carried] if resume.carried is not None else []
         done_rounds, moves, turns, sized = resume.rounds, resume.moves, list(resume.turns), set(resume.sized)
@@ -270,8 +268,7 @@ def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = No
     boundary = spec.boundary
     outline = (boundary.w, boundary.h)
     soft = grow_boundary or boundary.chosen
-    current, turned = _replayed(_Searched.of(spec, lshape.seeds_spec(spec), outline, soft), origin.turns,
-                                outline, soft)
+    current, turned = _replayed(spec, origin.turns, outline, soft)
     rng = random.Random(f"derive:{seed}")
     start = traded(origin.state, WORK["derive_trades"], rng)
     chain_moves = WORK["derive_moves_per_room"] * len(current.rooms.ids)
@@ -306,23 +303,21 @@ def _grown(target: Spec, boundary) -> tuple[float, float] | None:
 
 
 def _difference(a: dict[str, Rect], b: dict[str, Rect]) -> float:
-    def centres(geometry: dict[str, Rect]) -> dict[str, tuple[float, float]]:
-        return {room: (x + w / 2, y + h / 2) for room, (x, y, w, h) in geometry.items()}
-
-    return difference(centres(a), centres(b))
+    return difference(rect_centres(a), rect_centres(b))
 
 
-def _replayed(current: _Searched, turns, outline: tuple[float, float], soft: bool) -> tuple[_Searched, list[str]]:
-    """What the rounds searched after the given turns of corridors (shapes.with_turns),
-    made again on `current`, and the rooms they turned."""
+def _replayed(spec: Spec, turns, outline: tuple[float, float], soft: bool,
+              drawn: Spec | None = None) -> tuple[_Searched, list[str]]:
+    """What the rounds search after the given turns of corridors (shapes.with_turns) made
+    again on `spec` (`drawn`: its drawn spec, when already known), and the rooms they
+    turned."""
     turned: list[str] = []
-    turned_spec = current.spec
     for doors in turns:
-        turned_spec, made = shapes.with_turns(turned_spec, list(doors))
+        spec, made = shapes.with_turns(spec, list(doors))
         turned += made
-    if turns:
-        current = _Searched.of(turned_spec, lshape.seeds_spec(turned_spec), outline, soft)
-    return current, turned
+    if turns or drawn is None:
+        drawn = lshape.seeds_spec(spec)
+    return _Searched.of(spec, drawn, outline, soft), turned
 
 
 @dataclass(frozen=True)

@@ -192,7 +192,8 @@ def _compile_variant(spec: Spec, job: Job):
     from layoutdsl.compile import compile_spec
     from layoutdsl.compile.generator import derive, generate
 
-    variant_seed, options, point, source, rounds, resume = job[:6]
+    variant_seed, options, point, source, rounds, resume = job.seed, job.options, job.point, job.source, \
+        job.rounds, job.resume
     began = time.monotonic()
     deadline = began + options.time_limit
     from_hints = source == "hints"
@@ -387,6 +388,14 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
 
     derived_from: list[int] = []
 
+    def run(jobs: list[Job], how: str, stop: Callable[[], bool]) -> list[Job]:
+        """The jobs' outcomes taken in job order until `stop()`; the jobs not taken."""
+        done = 0
+        for job, outcome in _in_seed_order(spec, jobs, workers, stop):
+            done += 1
+            take(job, outcome, how)
+        return jobs[done:]
+
     def derive_from_first() -> None:
         # once, from the first seed's layout kept: one chain a try instead of whole rounds
         if derived_from or not origins or enough():
@@ -417,30 +426,20 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
             longer = [Job(s, options, None, "graph", tier, resume) for s, resume in failed]
             failed.clear()
             how = "full construction" if tier is None else f"{tier} rounds"
-            consumed = 0
-            for job, outcome in _in_seed_order(spec, longer, workers,
-                                               lambda: enough() or (bool(origins) and not derived_from)):
-                consumed += 1
-                take(job, outcome, how)
+            rest = run(longer, how, lambda: enough() or (bool(origins) and not derived_from))
             derive_from_first()
-            for job, outcome in _in_seed_order(spec, longer[consumed:], workers, enough):
-                take(job, outcome, how)
+            run(rest, how, enough)
 
     quick = [Job(s, options, None, "graph", ROUND_TIERS[0]) for s in range(seed, seed + 1 + SEEDS_PER_VARIANT * (n - 1))]
-    taken = 0
     # before any layout, a plan whose quick tries fail goes deeper after FIRST_FAILURES of
     # them a worker, whatever N: more quick tries would only delay the first layout, from
     # which the rest are derived
-    for job, outcome in _in_seed_order(spec, quick, workers,
-                                       lambda: quick_done() or bool(origins)
-                                       or len(failed) >= FIRST_FAILURES * workers):
-        taken += 1
-        take(job, outcome, "quick try")
+    rest = run(quick, "quick try",
+               lambda: quick_done() or bool(origins) or len(failed) >= FIRST_FAILURES * workers)
     derive_from_first()
     if not origins:
         tiers(until_first=True)
-    for job, outcome in _in_seed_order(spec, quick[taken:], workers, quick_done):
-        take(job, outcome, "quick try")
+    run(rest, "quick try", quick_done)
     tiers(until_first=False)
     chosen = [(s, layout, kick) for s, layout, _, kick in kept]
     for variant_seed, layout, kick in close[:n - len(kept)]:

@@ -119,6 +119,11 @@ def layout_centres(layout) -> dict[str, tuple[float, float]]:
     return {room.id: room.centre for room in layout.rooms}
 
 
+def rect_centres(rects) -> dict[str, tuple[float, float]]:
+    """Centres of rectangles by id, each (x, y, w, h): the generator's states and sizings."""
+    return {room: (x + w / 2, y + h / 2) for room, (x, y, w, h) in rects.items()}
+
+
 def hint_centres(spec) -> dict[str, tuple[float, float]]:
     """Centres of a spec's hint rectangles (empty when the spec has none)."""
     return {h.room: (h.x + h.w / 2, h.y + h.h / 2) for h in spec.hints}

@@ -84,7 +84,9 @@ def slivers(spec: Spec, layout: Layout, usable_width: float = USABLE_WIDTH,
     `usable_width`, along more than a wall's thickness: too narrow to walk or furnish, yet
     free space to a robot's laser. Not a hard constraint of the spec (the thesis' model does
     not rule them out, so `verify` leaves them alone); compile's generator promises a wall
-    or a usable space instead (issue 40) and checks every layout it writes with this."""
+    or a usable space instead (issue 40) and checks every layout it writes with this. The
+    geometry is this module's own, not layout.realism.find_slivers: the sliver pass finds
+    the gaps it mends with that one, so a mistake there cannot hide itself here."""
     wall = spec.settings.walldim
     parts = [part for room in layout.rooms for part in _parts(room)]
     found: dict[tuple[str, str], tuple[float, float]] = {}
