@@ -47,6 +47,20 @@ WORK = {
     "derive_temperature": 0.001,
     "derive_min_difference": 0.3,  # a derived state nearer its origin is not sized (variants' MIN_PAIRWISE)
     "derive_repair_rounds": 2,     # fewer than a round's: one sizing failed after 43 s with 4, 1.8 s with 2
+    # growing a found state towards its rooms' targets (schedule.grown) before it is sized:
+    # the rounds draw rooms smaller than their targets (initial.PACKING_DENSITY), and with
+    # the relations of so small a packing fixed the sizing LP could not grow them back (room
+    # area 0.79-0.88 of the original on four plans). Each step draws the rooms a fifth
+    # nearer their targets, at least grow_floor of that size, and one chain mends the doors
+    # that moved; the last step that ends within grow_tolerance_m of a layout is sized.
+    # Measured (seed 0, room area / the original's): school_UMTDSchoolFloorplan 0.793 ->
+    # 0.853, school_Lamuniere1 0.838 -> 0.950, school_Sabadell3 0.877 -> 0.940; at 1500
+    # moves a room and 0.001 (derive's temperature) the first step already failed.
+    "grow_steps": 5,
+    "grow_moves_per_room": 3000,
+    "grow_temperature": 0.003,
+    "grow_floor": 0.97,
+    "grow_tolerance_m": 0.01,
     "repair_rounds": 4,          # repair rounds of an annealed state before the next round anneals
     "repair_stalls": 1,          # ... or stalled rounds
     "final_nodes": 2000,         # the final sizing LP/MIP with every relation fixed

@@ -224,14 +224,15 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
         key = (tuple(turned), b"".join(part.tobytes() for part in found.state))
         if found.violation <= WORK["repair_max_violation_m"] and key not in sized:
             sized.add(key)
-            geometry = current.rooms.geometry(found.state)
-            target = _drawn_round(current.spec, geometry) if soft else current.spec
-            rects = _sized(target, geometry, rng, seed, limits)
-            if rects is not None:
-                return Generated(rects, target, "annealed", done_rounds, moves, grown=_grown(target, boundary),
-                                 turned=tuple(turned), origin=Origin(tuple(turns), found.state))
-            if time.monotonic() >= limits.deadline:
-                return ended(cut_off=True)
+            for state in _grown_first(current, found, soft, f"{seed}:{found.round}", limits.deadline):
+                geometry = current.rooms.geometry(state)
+                target = _drawn_round(current.spec, geometry) if soft else current.spec
+                rects = _sized(target, geometry, rng, seed, limits)
+                if rects is not None:
+                    return Generated(rects, target, "annealed", done_rounds, moves, grown=_grown(target, boundary),
+                                     turned=tuple(turned), origin=Origin(tuple(turns), found.state))
+                if time.monotonic() >= limits.deadline:
+                    return ended(cut_off=True)
         if found.round in WORK["turn_after_rounds"]:
             # the doors still unmet are those a corridor's straight run cannot reach: such a
             # corridor turns a corner for the rounds that follow, from where it lay
@@ -279,14 +280,31 @@ def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = No
     geometry = current.rooms.geometry(found.state)
     if found.violation <= WORK["repair_max_violation_m"] and \
             _difference(current.rooms.geometry(origin.state), geometry) >= WORK["derive_min_difference"]:
-        target = _drawn_round(current.spec, geometry) if soft else current.spec
-        rects = _sized(target, geometry, rng, seed, limits, rounds=WORK["derive_repair_rounds"])
-        if rects is not None:
-            return Generated(rects, target, "derived", 1, found.moves, grown=_grown(target, boundary),
-                             turned=tuple(turned),
-                             origin=Origin(origin.turns, found.state))
+        for state in _grown_first(current, found, soft, f"derive:{seed}", deadline):
+            geometry = current.rooms.geometry(state)
+            target = _drawn_round(current.spec, geometry) if soft else current.spec
+            rects = _sized(target, geometry, rng, seed, limits, rounds=WORK["derive_repair_rounds"])
+            if rects is not None:
+                return Generated(rects, target, "derived", 1, found.moves, grown=_grown(target, boundary),
+                                 turned=tuple(turned),
+                                 origin=Origin(origin.turns, found.state))
+            if time.monotonic() >= deadline:
+                break
     return Generated(None, current.spec, "", 1, found.moves, cut_off=time.monotonic() >= deadline,
                      turned=tuple(turned))
+
+
+def _grown_first(current: _Searched, found: schedule.Found, soft: bool, key: str,
+                 deadline: float) -> list:
+    """The states to size, in order: `found` grown towards the rooms' targets
+    (schedule.grown), then `found` itself should the grown one not size. The rounds draw
+    rooms smaller than their targets in an outline the spec gives; with a boundary drawn
+    round the packing they are drawn at their targets, and only a state at a layout grows."""
+    if soft or found.violation > WORK["grow_tolerance_m"]:
+        return [found.state]
+    grown = schedule.grown(current.rooms, current.targets, found.state,
+                           random.Random(f"grow:{key}").randrange(2**31), deadline)
+    return [found.state] if grown is found.state else [grown, found.state]
 
 
 def _limits(deadline: float | None) -> RepairLimits:
@@ -327,12 +345,15 @@ class _Searched:
     spec: Spec
     drawn: Spec
     rooms: Rooms
+    targets: dict[str, tuple[float, float]]
+    """Each drawn room's (long, short) sides at full size, which a found state grows towards."""
 
     @staticmethod
     def of(spec: Spec, drawn: Spec, outline: tuple[float, float], soft: bool) -> _Searched:
-        sides = initial.drawn_sides(drawn, outline, shrink=1.0 if soft else None)
+        targets = initial.drawn_sides(drawn, outline, shrink=1.0)
+        sides = targets if soft else initial.drawn_sides(drawn, outline)
         return _Searched(spec, drawn, Rooms.of(drawn, sides, outline, outline_given=not soft,
-                                               crossings=lshape.crossings(spec)))
+                                               crossings=lshape.crossings(spec)), targets)
 
 
 def _sized(spec: Spec, geometry: dict[str, Rect], rng: random.Random, seed: int,

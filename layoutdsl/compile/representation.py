@@ -22,7 +22,7 @@ from __future__ import annotations
 
 from collections import namedtuple
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numba import njit
@@ -316,6 +316,24 @@ class Rooms:
             on_boundary=np.array([room.on_boundary for room in spec.rooms], dtype=np.bool_),
             width=float(outline[0]), height=float(outline[1]), wall=spec.settings.walldim,
             outline_given=outline_given, partner=partner, crosses=crosses, doors=tuple(door_rooms))
+
+    def grown_towards(self, sides: Mapping[str, tuple[float, float]], share: float, floor: float) -> Rooms:
+        """These rooms drawn `share` of the way from their drawn sides to `sides` (their
+        targets), each side at least `floor` x that size: a state packed with them keeps its
+        rooms that large, so its doors can only be met by moving rooms, not shrinking them."""
+        long_side = self.target_long + share * (np.array([sides[i][0] for i in self.ids]) - self.target_long)
+        short_side = self.target_short + share * (np.array([sides[i][1] for i in self.ids]) - self.target_short)
+        bounds = self.bounds.copy()
+        bounds[:, 0] = np.minimum(np.maximum(bounds[:, 0], floor * long_side), bounds[:, 1])
+        bounds[:, 2] = np.minimum(np.maximum(bounds[:, 2], floor * short_side), bounds[:, 3])
+        return replace(self, target_long=long_side, target_short=short_side, bounds=bounds)
+
+    def fitted(self, state: State) -> State:
+        """The state with each room's sides raised to its drawn size, within its bounds."""
+        p, q, turned, long_side, short_side = state
+        return (p, q, turned,
+                np.clip(np.maximum(long_side, self.target_long), self.bounds[:, 0], self.bounds[:, 1]),
+                np.clip(np.maximum(short_side, self.target_short), self.bounds[:, 2], self.bounds[:, 3]))
 
     def state_of(self, geometry: Mapping[str, Rect]) -> State:
         """The state of a geometry whose rectangles may overlap: P by x - y of the centres,

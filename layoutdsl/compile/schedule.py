@@ -101,6 +101,27 @@ def one_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, deadline
     return Found((p, q, turned, long_side, short_side), float(violation), float(cost), 0, 0, int(done))
 
 
+def grown(rooms: Rooms, targets: dict[str, tuple[float, float]], start: State, kernel_seed: int,
+          deadline: float | None) -> State:
+    """`start` (a state of `rooms` within a layout) with its rooms grown towards `targets` in
+    WORK["grow_steps"] steps: each step draws them that much larger (Rooms.grown_towards),
+    raises the state's sides to that size and runs one cool chain to meet the doors again.
+    The state of the last step that ended within WORK["grow_tolerance_m"] of a layout is
+    returned (`start` if none did); a cut-off step ends the growth like a failed one."""
+    steps = WORK["grow_steps"]
+    moves = WORK["grow_moves_per_room"] * len(rooms.ids)
+    draw = random.Random(kernel_seed)
+    state = start
+    for step in range(1, steps + 1):
+        larger = rooms.grown_towards(targets, step / steps, WORK["grow_floor"])
+        found = one_chain(larger, larger.fitted(state), draw.randrange(2**31), moves, deadline,
+                          WORK["grow_temperature"])
+        if found is None or found.violation > WORK["grow_tolerance_m"]:
+            break
+        state = found.state
+    return state
+
+
 def moves_of_round(rooms: Rooms, round_index: int) -> int:
     return int(min(MAX_MOVES, MOVES_PER_ROOM * len(rooms.ids) * ROUND_GROWTH ** round_index))
 
