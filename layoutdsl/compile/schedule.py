@@ -72,7 +72,8 @@ def chain_seeds(seed: int, round_index: int) -> list[int]:
 
 
 def run_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, cancel: np.ndarray,
-              start_temperature: float = START_TEMPERATURE):
+              start_temperature: float = START_TEMPERATURE, zero_stop: float = ZERO_STOP,
+              met: float = 1e-9):
     """One chain from `start` (the kernel releases the GIL)."""
     scale = rooms.width + rooms.height
     give_up_step = int(GIVE_UP_AT * moves)
@@ -80,11 +81,11 @@ def run_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, cancel: 
                   rooms.need, rooms.join, rooms.group_end, rooms.door_ptr, rooms.door_to, rooms.on_boundary, rooms.width,
                   rooms.height, rooms.wall, rooms.outline_given, rooms.partner, kernel_seed, moves,
                   start_temperature * scale, END_TEMPERATURE * scale, give_up_step, GIVE_UP_M,
-                  cancel, *start)
+                  zero_stop, met, cancel, *start)
 
 
 def one_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, deadline: float | None,
-              start_temperature: float) -> Found | None:
+              start_temperature: float, zero_stop: float = ZERO_STOP, met: float = 1e-9) -> Found | None:
     """A single chain from `start` at its own start temperature (x the outline's half
     perimeter), in this thread: a derived arrangement's (generator.derive), which runs
     beside other variants and needs no second core. None when `deadline` cut it off."""
@@ -92,7 +93,7 @@ def one_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, deadline
     timer = _cancel_at(deadline, cancel)
     try:
         p, q, turned, long_side, short_side, violation, cost, done = run_chain(
-            rooms, start, kernel_seed, moves, cancel, start_temperature)
+            rooms, start, kernel_seed, moves, cancel, start_temperature, zero_stop, met)
     finally:
         if timer is not None:
             timer.cancel()
@@ -114,8 +115,9 @@ def grown(rooms: Rooms, targets: dict[str, tuple[float, float]], start: State, k
     state = start
     for step in range(1, steps + 1):
         larger = rooms.grown_towards(targets, step / steps, WORK["grow_floor"])
+        # a step only has to meet the doors again: it stops at the first state that does
         found = one_chain(larger, larger.fitted(state), draw.randrange(2**31), moves, deadline,
-                          WORK["grow_temperature"])
+                          WORK["grow_temperature"], zero_stop=0.0, met=WORK["grow_tolerance_m"])
         if found is None or found.violation > WORK["grow_tolerance_m"]:
             break
         state = found.state
@@ -170,7 +172,7 @@ def _cancel_at(deadline: float | None, cancel: np.ndarray) -> threading.Timer | 
 @njit(cache=True, nogil=True)
 def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, join, group_end, door_ptr, door_to, on_boundary,
            width, height, wall, outline_given, partner, seed, moves, t_start, t_end, give_up_step, give_up_m,
-           cancel, start_p, start_q, start_turned, start_long, start_short):
+           zero_stop, met, cancel, start_p, start_q, start_turned, start_long, start_short):
     np.random.seed(seed)
     n = drawn_long.shape[0]
     m = edge_a.shape[0]
@@ -242,7 +244,7 @@ def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, join, group_en
                 best_short[:] = short_side
                 best_violation = new_violation
                 best_cost = new_cost
-        if best_violation <= 1e-9 and step >= ZERO_STOP * moves:
+        if best_violation <= met and step >= zero_stop * moves:
             # a packing with every door met: the rest would only make it more compact
             break
     return best_p, best_q, best_turned, best_long, best_short, best_violation, best_cost, done + 1
