@@ -4,6 +4,7 @@
     hints        -> the original plan's boxes, when the spec keeps its arrangement
     initial      -> a sequence pair read off the room graph      (initial.py)
     schedule     -> annealing: moves, one cost, work limits      (schedule.py, moves.py, cost.py)
+    growth       -> a found state's rooms grown to their targets (schedule.grown)
     sizing       -> relations fixed, SCIP's LP/MIP finds sizes   (layoutdsl.solve.relations)
     verify       -> the independent verifier                     (layoutdsl.layout.verify)
 
@@ -11,7 +12,8 @@ A spec that keeps its arrangement (`hints`, from `import --keep-arrangement`) is
 the original boxes first. Otherwise, and when that fails, each round of the schedule anneals
 CHAINS sequence-pair states from new spring embeddings of the room graph, with more moves
 than the round before; its best state, when within `repair_max_violation_m` of a layout, is
-packed and handed to the sizing stage (once: a state it failed on is not sized again), whose
+packed (first grown towards the rooms' targets when it is one: the rounds draw rooms small
+in a given outline) and handed to the sizing stage (once: a state it failed on is not sized again), whose
 relation model meets every door exactly, keeps every other pair a wall apart and brings the
 sizes near their targets. After the rounds of
 WORK["turn_after_rounds"], a corridor-like room of each door between two of them that the

@@ -10,7 +10,7 @@ connections) start there.
 
 The sides each room is drawn with (`drawn_sides`) are its targets shrunk towards
 PACKING_DENSITY of the outline, corridors lengthened for the rooms that hang off them;
-the sizing stage grows them back as far as they fit.
+a found state is grown back towards the targets (schedule.grown) before it is sized.
 """
 
 from __future__ import annotations
