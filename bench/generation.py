@@ -331,6 +331,10 @@ def realism_summary(rows: list[dict]) -> str:
             f"{statistics.median(voids) if voids else 0:.3f}, max {max(voids, default=0):.3f}")
     if any(row.get("original_void_share") is not None for row in verified):
         text += f", within original + 2 points: {within}/{len(verified)}"
+    if any(row.get("area_ratio") is not None for row in verified):
+        # issue 40's line: room area within 10 % of the original's
+        area_ok = sum(abs(row["area_ratio"] - 1) <= 0.10 for row in verified if row.get("area_ratio") is not None)
+        text += f"; area within +-10 %: {area_ok}/{len(verified)}"
     return text + f"; layouts with slivers {sum(row['slivers'] > 0 for row in verified)}"
 
 
