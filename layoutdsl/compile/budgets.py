@@ -53,9 +53,12 @@ WORK = {
     # area 0.79-0.88 of the original on four plans). Each step draws the rooms a fifth
     # nearer their targets, at least grow_floor of that size, and one chain mends the doors
     # that moved; the last step that ends within grow_tolerance_m of a layout is sized.
-    # Measured (seed 0, room area / the original's): school_UMTDSchoolFloorplan 0.793 ->
-    # 0.853, school_Lamuniere1 0.838 -> 0.950, school_Sabadell3 0.877 -> 0.940; at 1500
-    # moves a room and 0.001 (derive's temperature) the first step already failed.
+    # Measured (compile, seed 0, room area / the original's): school_UMTDSchoolFloorplan
+    # 0.820 -> 0.888, school_Lamuniere1 0.845 -> 0.925, school_Ursy1 0.921 -> 1.003; over the
+    # 24 plans area within 10 % 11 -> 14 of 23 (bench/results/generation-plans.txt). Two
+    # steps at 1500 moves a room and 0.001 (derive's temperature) mostly failed at the first;
+    # 1500 moves at five steps lost UMTD's gain; two chains a step (the first that succeeds)
+    # changed areas both ways and cost 0.1-0.5 s more.
     "grow_steps": 5,
     "grow_moves_per_room": 3000,
     "grow_temperature": 0.003,
