@@ -226,15 +226,13 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
         key = (tuple(turned), b"".join(part.tobytes() for part in found.state))
         if found.violation <= WORK["repair_max_violation_m"] and key not in sized:
             sized.add(key)
-            for state in _grown_first(current, found, soft, f"{seed}:{found.round}", limits.deadline):
-                geometry = current.rooms.geometry(state)
-                target = _drawn_round(current.spec, geometry) if soft else current.spec
-                rects = _sized(target, geometry, rng, seed, limits)
-                if rects is not None:
-                    return Generated(rects, target, "annealed", done_rounds, moves, grown=_grown(target, boundary),
-                                     turned=tuple(turned), origin=Origin(tuple(turns), found.state))
-                if time.monotonic() >= limits.deadline:
-                    return ended(cut_off=True)
+            layout = _sized_found(current, found, soft, f"{seed}:{found.round}", rng, seed, limits)
+            if layout is not None:
+                rects, target = layout
+                return Generated(rects, target, "annealed", done_rounds, moves, grown=_grown(target, boundary),
+                                 turned=tuple(turned), origin=Origin(tuple(turns), found.state))
+            if time.monotonic() >= limits.deadline:
+                return ended(cut_off=True)
         if found.round in WORK["turn_after_rounds"]:
             # the doors still unmet are those a corridor's straight run cannot reach: such a
             # corridor turns a corner for the rounds that follow, from where it lay
@@ -282,18 +280,31 @@ def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = No
     geometry = current.rooms.geometry(found.state)
     if found.violation <= WORK["repair_max_violation_m"] and \
             _difference(current.rooms.geometry(origin.state), geometry) >= WORK["derive_min_difference"]:
-        for state in _grown_first(current, found, soft, f"derive:{seed}", deadline):
-            geometry = current.rooms.geometry(state)
-            target = _drawn_round(current.spec, geometry) if soft else current.spec
-            rects = _sized(target, geometry, rng, seed, limits, rounds=WORK["derive_repair_rounds"])
-            if rects is not None:
-                return Generated(rects, target, "derived", 1, found.moves, grown=_grown(target, boundary),
-                                 turned=tuple(turned),
-                                 origin=Origin(origin.turns, found.state))
-            if time.monotonic() >= deadline:
-                break
+        layout = _sized_found(current, found, soft, f"derive:{seed}", rng, seed, limits,
+                              rounds=WORK["derive_repair_rounds"])
+        if layout is not None:
+            rects, target = layout
+            return Generated(rects, target, "derived", 1, found.moves, grown=_grown(target, boundary),
+                             turned=tuple(turned), origin=Origin(origin.turns, found.state))
     return Generated(None, current.spec, "", 1, found.moves, cut_off=time.monotonic() >= deadline,
                      turned=tuple(turned))
+
+
+def _sized_found(current: _Searched, found: schedule.Found, soft: bool, key: str, rng: random.Random,
+                 seed: int, limits: RepairLimits,
+                 rounds: int = WORK["repair_rounds"]) -> tuple[dict[str, Rect], Spec] | None:
+    """(rectangles, the spec they are sized for) of a round's or a derived arrangement's
+    best state: grown first (`_grown_first`), the state as found should that not size;
+    None when neither sizes or the deadline passed. `key` seeds the growth."""
+    for state in _grown_first(current, found, soft, key, limits.deadline):
+        geometry = current.rooms.geometry(state)
+        target = _drawn_round(current.spec, geometry) if soft else current.spec
+        rects = _sized(target, geometry, rng, seed, limits, rounds=rounds)
+        if rects is not None:
+            return rects, target
+        if time.monotonic() >= limits.deadline:
+            break
+    return None
 
 
 def _grown_first(current: _Searched, found: schedule.Found, soft: bool, key: str,
