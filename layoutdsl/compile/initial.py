@@ -33,6 +33,10 @@ for every door; the sizing LP grows them back as far as they fit."""
 MAX_SHRINK = 0.92
 """Drawn sides are at most this share of their targets."""
 
+OUTSIDE_RADIUS = 2.0
+"""Where a room that must open outside is tied to, in the embedding's units (the rooms
+spread over about -1..1)."""
+
 SPRING_ITERATIONS = 60
 """Iterations of the spring embedding (networkx's default is 50)."""
 
@@ -130,12 +134,37 @@ def pinned_points(spec: Spec) -> dict[str, tuple[float, float]]:
     return points
 
 
+def _embedding(spec: Spec, graph: nx.Graph, seed: int) -> dict[str, np.ndarray]:
+    """The room graph's seeded spring embedding, each room that must open outside (onB) tied
+    to a point of its own on a circle round the building, so it starts on the outside."""
+    outside = sorted(room.id for room in spec.rooms if room.on_boundary and room.id in graph)
+    if not outside:
+        return nx.spring_layout(graph, seed=seed, iterations=SPRING_ITERATIONS)
+    rng = np.random.default_rng([seed, 0x0B])
+    graph = graph.copy()
+    start = rng.random() * 2 * math.pi
+    fixed = {}
+    for k, room_id in enumerate(outside):
+        angle = start + 2 * math.pi * (k + rng.random() * 0.8) / len(outside)
+        anchor = ("outside", room_id)
+        graph.add_edge(room_id, anchor)
+        fixed[anchor] = np.array([OUTSIDE_RADIUS * math.cos(angle), OUTSIDE_RADIUS * math.sin(angle)])
+    start_points = {node: rng.uniform(-1, 1, 2) for node in graph if node not in fixed}
+    start_points.update(fixed)
+    points = nx.spring_layout(graph, pos=start_points, fixed=list(fixed), seed=seed,
+                              iterations=SPRING_ITERATIONS, k=1 / math.sqrt(len(graph)))
+    rooms = np.array([points[node] for node in graph if node not in fixed])
+    centre = rooms.mean(axis=0)
+    span = np.abs(rooms - centre).max() or 1.0
+    return {node: (points[node] - centre) / span for node in graph if node not in fixed}
+
+
 def initial_geometry(spec: Spec, rooms: Rooms, seed: int) -> dict[str, Rect]:
     """Each room's drawn rectangle centred on its point of a seeded spring embedding of the
     room graph, stretched to the outline; pinned rooms on their points."""
     graph = room_graph(spec)
     scale = math.sqrt(rooms.width * rooms.height) / 2
-    points = nx.spring_layout(graph, seed=seed, iterations=SPRING_ITERATIONS)
+    points = _embedding(spec, graph, seed)
     aspect = math.sqrt(rooms.width / rooms.height)
     pinned = pinned_points(spec)
     rng = np.random.default_rng(seed)
