@@ -135,28 +135,30 @@ def pinned_points(spec: Spec) -> dict[str, tuple[float, float]]:
 
 
 def _embedding(spec: Spec, graph: nx.Graph, seed: int) -> dict[str, np.ndarray]:
-    """The room graph's seeded spring embedding, each room that must open outside (onB) tied
-    to a point of its own on a circle round the building, so it starts on the outside."""
+    """The room graph's seeded spring embedding with each room that must open outside (onB)
+    pulled out: tied to a point of its own on a circle round the building, in the direction
+    the plain embedding put it, and the embedding run again from there."""
+    points = nx.spring_layout(graph, seed=seed, iterations=SPRING_ITERATIONS)
     outside = sorted(room.id for room in spec.rooms if room.on_boundary and room.id in graph)
     if not outside:
-        return nx.spring_layout(graph, seed=seed, iterations=SPRING_ITERATIONS)
-    rng = np.random.default_rng([seed, 0x0B])
-    graph = graph.copy()
-    start = rng.random() * 2 * math.pi
-    fixed = {}
-    for k, room_id in enumerate(outside):
-        angle = start + 2 * math.pi * (k + rng.random() * 0.8) / len(outside)
+        return points
+    centre = np.mean([points[node] for node in graph], axis=0)
+    tied = graph.copy()
+    start = dict(points)
+    for room_id in outside:
+        direction = points[room_id] - centre
+        norm = float(np.hypot(*direction))
+        direction = direction / norm if norm > 1e-9 else np.array([1.0, 0.0])
         anchor = ("outside", room_id)
-        graph.add_edge(room_id, anchor)
-        fixed[anchor] = np.array([OUTSIDE_RADIUS * math.cos(angle), OUTSIDE_RADIUS * math.sin(angle)])
-    start_points = {node: rng.uniform(-1, 1, 2) for node in graph if node not in fixed}
-    start_points.update(fixed)
-    points = nx.spring_layout(graph, pos=start_points, fixed=list(fixed), seed=seed,
+        tied.add_edge(room_id, anchor)
+        start[anchor] = centre + OUTSIDE_RADIUS * direction
+    anchors = [("outside", room_id) for room_id in outside]
+    pulled = nx.spring_layout(tied, pos=start, fixed=anchors, seed=seed,
                               iterations=SPRING_ITERATIONS, k=1 / math.sqrt(len(graph)))
-    rooms = np.array([points[node] for node in graph if node not in fixed])
-    centre = rooms.mean(axis=0)
-    span = np.abs(rooms - centre).max() or 1.0
-    return {node: (points[node] - centre) / span for node in graph if node not in fixed}
+    rooms = np.array([pulled[node] for node in graph])
+    middle = rooms.mean(axis=0)
+    span = float(np.abs(rooms - middle).max()) or 1.0
+    return {node: (pulled[node] - middle) / span for node in graph}
 
 
 def initial_geometry(spec: Spec, rooms: Rooms, seed: int) -> dict[str, Rect]:
