@@ -201,7 +201,8 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
             return best[0].state
         if chain == 0 and carried:
             return carried[0]
-        return initial.initial_state(current.drawn, current.rooms, _embedding_seed(seed, round_index, chain))
+        pulled = (round_index + chain) % 2 == 1
+        return initial.initial_state(current.drawn, current.rooms, _embedding_seed(seed, round_index, chain), pulled)
 
     def ended(cut_off: bool = False) -> Generated:
         resume = None if cut_off else Resume(tuple(turns), done_rounds, moves, best[0] if best else None,

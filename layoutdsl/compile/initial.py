@@ -33,6 +33,10 @@ for every door; the sizing LP grows them back as far as they fit."""
 MAX_SHRINK = 0.92
 """Drawn sides are at most this share of their targets."""
 
+OUTSIDE_RADIUS = 2.0
+"""Where a room that must open outside is tied to, in the embedding's units (the rooms
+spread over about -1..1)."""
+
 SPRING_ITERATIONS = 60
 """Iterations of the spring embedding (networkx's default is 50)."""
 
@@ -130,12 +134,39 @@ def pinned_points(spec: Spec) -> dict[str, tuple[float, float]]:
     return points
 
 
-def initial_geometry(spec: Spec, rooms: Rooms, seed: int) -> dict[str, Rect]:
+def _embedding(spec: Spec, graph: nx.Graph, seed: int, pulled: bool) -> dict[str, np.ndarray]:
+    """The room graph's seeded spring embedding with each room that must open outside (onB)
+    pulled out: tied to a point of its own on a circle round the building, in the direction
+    the plain embedding put it, and the embedding run again from there."""
+    points = nx.spring_layout(graph, seed=seed, iterations=SPRING_ITERATIONS)
+    outside = sorted(room.id for room in spec.rooms if room.on_boundary and room.id in graph)
+    if not outside or not pulled:
+        return points
+    centre = np.mean([points[node] for node in graph], axis=0)
+    tied = graph.copy()
+    start = dict(points)
+    for room_id in outside:
+        direction = points[room_id] - centre
+        norm = float(np.hypot(*direction))
+        direction = direction / norm if norm > 1e-9 else np.array([1.0, 0.0])
+        anchor = ("outside", room_id)
+        tied.add_edge(room_id, anchor)
+        start[anchor] = centre + OUTSIDE_RADIUS * direction
+    anchors = [("outside", room_id) for room_id in outside]
+    drawn_out = nx.spring_layout(tied, pos=start, fixed=anchors, seed=seed,
+                              iterations=SPRING_ITERATIONS, k=1 / math.sqrt(len(graph)))
+    rooms = np.array([drawn_out[node] for node in graph])
+    middle = rooms.mean(axis=0)
+    span = float(np.abs(rooms - middle).max()) or 1.0
+    return {node: (drawn_out[node] - middle) / span for node in graph}
+
+
+def initial_geometry(spec: Spec, rooms: Rooms, seed: int, pulled: bool = False) -> dict[str, Rect]:
     """Each room's drawn rectangle centred on its point of a seeded spring embedding of the
     room graph, stretched to the outline; pinned rooms on their points."""
     graph = room_graph(spec)
     scale = math.sqrt(rooms.width * rooms.height) / 2
-    points = nx.spring_layout(graph, seed=seed, iterations=SPRING_ITERATIONS)
+    points = _embedding(spec, graph, seed, pulled)
     aspect = math.sqrt(rooms.width / rooms.height)
     pinned = pinned_points(spec)
     rng = np.random.default_rng(seed)
@@ -152,6 +183,6 @@ def initial_geometry(spec: Spec, rooms: Rooms, seed: int) -> dict[str, Rect]:
     return geometry
 
 
-def initial_state(spec: Spec, rooms: Rooms, seed: int) -> State:
+def initial_state(spec: Spec, rooms: Rooms, seed: int, pulled: bool = False) -> State:
     """The state the schedule starts a chain from (see the module docstring)."""
-    return rooms.state_of(initial_geometry(spec, rooms, seed))
+    return rooms.state_of(initial_geometry(spec, rooms, seed, pulled))
