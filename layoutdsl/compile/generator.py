@@ -201,6 +201,9 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
             return best[0].state
         if chain == 0 and carried:
             return carried[0]
+        # new starts alternate between the plain embedding and the one with entrances
+        # pulled outside: on the hardest graphs the start decides, and each kind draws
+        # graphs the other does not (docs/generator.md, "Two kinds of start")
         pulled = (round_index + chain) % 2 == 1
         return initial.initial_state(current.drawn, current.rooms, _embedding_seed(seed, round_index, chain), pulled)
 

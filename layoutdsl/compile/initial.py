@@ -8,6 +8,12 @@ points give the state (representation.Rooms.state_of): most doors start close to
 different seeds give different arrangements. Rooms pinned to a point (positions,
 connections) start there.
 
+A *pulled* start draws the embedding again with each room that must open outside (onB)
+tied to a point of its own on a circle round the building, in the direction the plain
+embedding put it (the outside stands in, as a rectangular dual's four exterior vertices
+do): a corridor that the other corridors ring starts on the outside when its entrance must.
+The schedule alternates the two kinds of start (generator.py says why).
+
 The sides each room is drawn with (`drawn_sides`) are its targets shrunk towards
 PACKING_DENSITY of the outline, corridors lengthened for the rooms that hang off them;
 a found state is grown back towards the targets (schedule.grown) before it is sized.

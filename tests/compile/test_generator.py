@@ -6,11 +6,14 @@ from __future__ import annotations
 
 import dataclasses
 import json
+import math
 
 import pytest
 
 from layoutdsl.compile import compile_spec
 from layoutdsl.compile.generator import generate
+from layoutdsl.compile.initial import drawn_sides, initial_geometry
+from layoutdsl.compile.representation import Rooms
 from layoutdsl.compile.structure import with_l_rooms
 from layoutdsl.layout.geometry import layout_from_rects
 from layoutdsl.layout.verify import verify
@@ -323,3 +326,41 @@ def test_a_found_state_grown_towards_its_targets_keeps_more_room_area(monkeypatc
     monkeypatch.setitem(budgets.WORK, "grow_steps", 0)
     as_found = [area(generate(spec, seed=seed)) for seed in range(3)]
     assert sum(grown) > sum(as_found) + 0.03 * len(grown), (grown, as_found)
+
+
+def _wheel_with_an_entrance_on_its_hub() -> Spec:
+    """A hub corridor ringed by four corridors joined in a cycle, two rooms on each, and an
+    entrance (onB) on the hub: the hub must lie on the outside for the entrance to."""
+    rim = ["A", "B", "C", "D"]
+    rooms = [room("H", 12.0, 3.0, rtype="C")] + [room(r, 10.0, 2.5, rtype="C") for r in rim]
+    rooms.append(room("E", 3.0, 3.0, on_boundary=True))
+    adjacencies = [adjacent("H", r) for r in rim] + [adjacent("H", "E")]
+    adjacencies += [adjacent(a, b) for a, b in zip(rim, rim[1:] + rim[:1])]
+    for r in rim:
+        for k in range(2):
+            rooms.append(room(f"{r}{k}", 4.0, 3.5))
+            adjacencies.append(adjacent(r, f"{r}{k}"))
+    return Spec("wheel", tuple(rooms), Boundary(40.0, 30.0), tuple(adjacencies))
+
+
+def _on_the_outside(point, points) -> bool:
+    """Is `point` extreme in some direction among `points` (a corner of their convex hull)?"""
+    for step in range(720):
+        angle = math.pi * step / 360
+        dx, dy = math.cos(angle), math.sin(angle)
+        reach = point[0] * dx + point[1] * dy
+        if all(reach >= x * dx + y * dy - 1e-9 for x, y in points):
+            return True
+    return False
+
+
+def test_a_pulled_start_puts_a_room_that_must_open_outside_on_the_outside():
+    # the plain spring embedding of this graph puts the hub, and its entrance, inside the
+    # ring for 8 of these 20 seeds; the chains then cannot turn the building inside out
+    spec = _wheel_with_an_entrance_on_its_hub()
+    outline = (spec.boundary.w, spec.boundary.h)
+    rooms = Rooms.of(spec, drawn_sides(spec, outline), outline, outline_given=True)
+    for seed in range(20):
+        geometry = initial_geometry(spec, rooms, seed, pulled=True)
+        centres = {room_id: (x + w / 2, y + h / 2) for room_id, (x, y, w, h) in geometry.items()}
+        assert _on_the_outside(centres["E"], list(centres.values())), seed
