@@ -160,7 +160,7 @@ def _embedding(spec: Spec, graph: nx.Graph, seed: int, pulled: bool) -> dict[str
         start[anchor] = centre + OUTSIDE_RADIUS * direction
     anchors = [("outside", room_id) for room_id in outside]
     drawn_out = nx.spring_layout(tied, pos=start, fixed=anchors, seed=seed,
-                              iterations=SPRING_ITERATIONS, k=1 / math.sqrt(len(graph)))
+                                 iterations=SPRING_ITERATIONS, k=1 / math.sqrt(len(graph)))
     rooms = np.array([drawn_out[node] for node in graph])
     middle = rooms.mean(axis=0)
     span = float(np.abs(rooms - middle).max()) or 1.0
@@ -169,7 +169,8 @@ def _embedding(spec: Spec, graph: nx.Graph, seed: int, pulled: bool) -> dict[str
 
 def initial_geometry(spec: Spec, rooms: Rooms, seed: int, pulled: bool = False) -> dict[str, Rect]:
     """Each room's drawn rectangle centred on its point of a seeded spring embedding of the
-    room graph, stretched to the outline; pinned rooms on their points."""
+    room graph (`pulled`: with the entrances pulled outside), stretched to the outline;
+    pinned rooms on their points."""
     graph = room_graph(spec)
     scale = math.sqrt(rooms.width * rooms.height) / 2
     points = _embedding(spec, graph, seed, pulled)
