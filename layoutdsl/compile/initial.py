@@ -141,16 +141,17 @@ def pinned_points(spec: Spec) -> dict[str, tuple[float, float]]:
 
 
 def _embedding(spec: Spec, graph: nx.Graph, seed: int, pulled: bool) -> dict[str, np.ndarray]:
-    """The room graph's seeded spring embedding with each room that must open outside (onB)
-    pulled out: tied to a point of its own on a circle round the building, in the direction
-    the plain embedding put it, and the embedding run again from there."""
+    """The room graph's seeded spring embedding; `pulled`: with each room that must open
+    outside (onB) pulled out, tied to a point of its own on a circle round the building in
+    the direction the plain embedding put it, and the embedding run again from there."""
     points = nx.spring_layout(graph, seed=seed, iterations=SPRING_ITERATIONS)
-    outside = sorted(room.id for room in spec.rooms if room.on_boundary and room.id in graph)
-    if not outside or not pulled:
+    outside = sorted(room.id for room in spec.rooms if room.on_boundary and room.id in graph) if pulled else []
+    if not outside:
         return points
     centre = np.mean([points[node] for node in graph], axis=0)
     tied = graph.copy()
     start = dict(points)
+    anchors = []
     for room_id in outside:
         direction = points[room_id] - centre
         norm = float(np.hypot(*direction))
@@ -158,13 +159,11 @@ def _embedding(spec: Spec, graph: nx.Graph, seed: int, pulled: bool) -> dict[str
         anchor = ("outside", room_id)
         tied.add_edge(room_id, anchor)
         start[anchor] = centre + OUTSIDE_RADIUS * direction
-    anchors = [("outside", room_id) for room_id in outside]
+        anchors.append(anchor)
     drawn_out = nx.spring_layout(tied, pos=start, fixed=anchors, seed=seed,
                                  iterations=SPRING_ITERATIONS, k=1 / math.sqrt(len(graph)))
-    rooms = np.array([drawn_out[node] for node in graph])
-    middle = rooms.mean(axis=0)
-    span = float(np.abs(rooms - middle).max()) or 1.0
-    return {node: (drawn_out[node] - middle) / span for node in graph}
+    # with fixed nodes spring_layout does not rescale: the rooms alone, as a plain one is
+    return nx.rescale_layout_dict({node: drawn_out[node] for node in graph})
 
 
 def initial_geometry(spec: Spec, rooms: Rooms, seed: int, pulled: bool = False) -> dict[str, Rect]:
