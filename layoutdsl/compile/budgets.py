@@ -42,7 +42,15 @@ WORK = {
     # (24 each); office_floorplanLOWER none (its kicks that find a layout again lie 0.22-0.26
     # from it; 5 trades find none). A chain at the rounds' own start temperature (20x) lost
     # the layout and found none.
+    # A walk of chains, each kicked from the last one that met every door, kept office_floorplanMAIN
+    # going once its seed-0 layout came from a pulled start (kicks of it met again within 0.18-0.29
+    # of it or not at all): derived layouts kept 0.3 or more from every earlier one, from 30-40
+    # kicks, one core: 1 chain 0, 4 chains 5 (12.3 s each), 6 chains of 2 trades 9 (12.3 s),
+    # 4 chains at 3x this temperature 5 (13.5 s); school_wilbraham 1 chain 0, 4 chains 2;
+    # office_floorplanLOWER 1 chain 1, 4 chains 2.
     "derive_trades": 3,
+    "derive_steps": 4,
+    "derive_walk_m": 0.05,         # a chain that ends this near a layout is the next one's start
     "derive_moves_per_room": 3000,
     "derive_temperature": 0.001,
     "derive_min_difference": 0.3,  # a derived state nearer its origin is not sized (variants' MIN_PAIRWISE)

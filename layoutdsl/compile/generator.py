@@ -258,13 +258,16 @@ def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = No
     """A new arrangement near a found one: its state (`origin`, from `Generated.origin`)
     kicked by WORK["derive_trades"] random trades of two rooms (moves.traded), then one
     chain of annealing from a twentieth of the rounds' start temperature, cool enough to
-    keep most of the layout and warm enough to mend what the trades broke. Its best state is
-    sized like a round's when it lies within repair_max_violation_m of a layout and at least
-    derive_min_difference (layout.difference) from the origin; otherwise there are no
-    rectangles, and another seed is another kick. A run is work-limited like `generate`:
-    the same spec, origin and seed give the same rectangles.
+    keep most of the layout and warm enough to mend what the trades broke. A chain that
+    meets every door again (WORK["derive_walk_m"]) but stays within derive_min_difference
+    (layout.difference) of the origin is kicked again from where it ended, up to
+    WORK["derive_steps"] chains: a walk away from the origin, one met state at a time. The
+    first state within repair_max_violation_m of a layout and at least derive_min_difference
+    from the origin is sized like a round's; otherwise there are no rectangles, and another
+    seed is another walk. A run is work-limited like `generate`: the same spec, origin and
+    seed give the same rectangles.
 
-    Variants use it once a seed has found a layout: a derived arrangement costs one chain
+    Variants use it once a seed has found a layout: a derived arrangement costs a few chains
     and a short sizing, where a new seed on a plan with cycles needs 3-8 rounds."""
     if spec.boundary is None or not spec.rooms:
         return Generated(None, spec, "")
@@ -275,22 +278,28 @@ def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = No
     soft = grow_boundary or boundary.chosen
     current, turned = _replayed(spec, origin.turns, outline, soft)
     rng = random.Random(f"derive:{seed}")
-    start = traded(origin.state, WORK["derive_trades"], rng)
+    origin_geometry = current.rooms.geometry(origin.state)
     chain_moves = WORK["derive_moves_per_room"] * len(current.rooms.ids)
-    found = schedule.one_chain(current.rooms, start, rng.randrange(2**31), chain_moves, deadline,
-                               WORK["derive_temperature"])
-    if found is None:
-        return Generated(None, current.spec, "", 1, 0, cut_off=True, turned=tuple(turned))
-    geometry = current.rooms.geometry(found.state)
-    if found.violation <= WORK["repair_max_violation_m"] and \
-            _difference(current.rooms.geometry(origin.state), geometry) >= WORK["derive_min_difference"]:
-        layout = _sized_found(current, found, soft, f"derive:{seed}", rng, seed, limits,
-                              rounds=WORK["derive_repair_rounds"])
-        if layout is not None:
-            rects, target = layout
-            return Generated(rects, target, "derived", 1, found.moves, grown=_grown(target, boundary),
-                             turned=tuple(turned), origin=Origin(origin.turns, found.state))
-    return Generated(None, current.spec, "", 1, found.moves, cut_off=time.monotonic() >= deadline,
+    state, moves = origin.state, 0
+    for _step in range(WORK["derive_steps"]):
+        found = schedule.one_chain(current.rooms, traded(state, WORK["derive_trades"], rng),
+                                   rng.randrange(2**31), chain_moves, deadline, WORK["derive_temperature"])
+        if found is None:
+            return Generated(None, current.spec, "", 1, moves, cut_off=True, turned=tuple(turned))
+        moves += found.moves
+        geometry = current.rooms.geometry(found.state)
+        if found.violation <= WORK["repair_max_violation_m"] and \
+                _difference(origin_geometry, geometry) >= WORK["derive_min_difference"]:
+            layout = _sized_found(current, found, soft, f"derive:{seed}", rng, seed, limits,
+                                  rounds=WORK["derive_repair_rounds"])
+            if layout is not None:
+                rects, target = layout
+                return Generated(rects, target, "derived", 1, moves, grown=_grown(target, boundary),
+                                 turned=tuple(turned), origin=Origin(origin.turns, found.state))
+            break
+        if found.violation <= WORK["derive_walk_m"]:
+            state = found.state
+    return Generated(None, current.spec, "", 1, moves, cut_off=time.monotonic() >= deadline,
                      turned=tuple(turned))
 
 
