@@ -6,8 +6,8 @@ Two sources of variants:
   alone (layoutdsl.generate), ignoring the spec's hints, so variants differ from the
   original plan and from one another: seeds seed, seed + 1, ... are tried in turn and a
   layout is kept when it differs from every one kept before it (_new_arrangements); once
-  one is kept, arrangements derived from it (generator.derive: a kick and one chain) are
-  tried before more seeds;
+  one is kept, arrangements derived from the kept ones (generator.derive: a kick and a
+  short walk of chains) are tried before more seeds;
 - "hints": as before issue 11, for comparison: the first layout is repaired from the hints
   perturbed by the seed, and (as in the thesis) a chosen room, an entrance if there is
   one, gets a `Position` at another point of the boundary per variant (dropped again if that
@@ -159,6 +159,8 @@ class Job(NamedTuple):
     rounds: int | None = None
     resume: object = None
     derived: int | None = None
+    from_variant: int | None = None
+    """For a derived one: which variant kept (1-based) its origin is, for the progress line."""
 
 
 def _solve_variant(job: Job):
@@ -312,10 +314,17 @@ SEEDS_PER_VARIANT = 3
 first, before the seeds whose quick try found nothing get their full construction."""
 
 DERIVED_PER_VARIANT = 12
-"""Kicks of the first layout found (generator.derive) tried per variant still missing,
-before the quick tries go on; when the first this many keep none, no more are tried.
-Measured on office_floorplanMAIN: 8 kicks in 56 gave a layout 0.3 or more from their
-origin, on school_wilbraham 3 in 24, on office_floorplanLOWER none in 24."""
+"""Kicks (generator.derive) that may keep nothing in a row before compile goes back to
+seeds; a seed's layout kept later starts the kicks again. Measured on office_floorplanMAIN:
+8 kicks in 56 gave a layout 0.3 or more from their origin, on school_wilbraham 3 in 24, on
+office_floorplanLOWER none in 24."""
+
+DERIVE_BATCH = 8
+"""Kicks handed out at once, each from the origin of a kept variant in turn (round robin
+over those kept when the batch began), so a batch's origins depend on the outcomes taken
+before it, never on the workers' timing. Measured on office_floorplanMAIN (`--variants 25`,
+2 workers): with every kick from the first layout kept, the first 5 variants came within 23
+s and then the kicks mostly landed within 0.3 of a variant kept before (all 25 at 641 s)."""
 
 FIRST_FAILURES = 2
 """Quick tries a worker that may find nothing before any layout is kept, before the seeds
@@ -339,10 +348,12 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     Seeds seed, seed + 1, ... get a quick try each (_compile_variant), `workers` at a time
     and a few queued, so no core waits for a slow seed; their outcomes are taken in seed
     order, and one is kept when it lies at least MIN_PAIRWISE from every variant kept
-    before it. Once one is kept, kicks 1, 2, ... of its layout (generator.derive: a few
-    rooms traded, one chain, a short sizing) are tried the same way, DERIVED_PER_VARIANT
-    per variant still missing: one chain costs less than the 3-8 rounds a new seed needs
-    on a plan with cycles. The quick tries then go on where they stopped, until N are kept,
+    before it. Once one is kept, kicks 1, 2, ... of the kept layouts (generator.derive: a
+    few rooms traded, a short walk of chains, a short sizing) are tried the same way,
+    DERIVE_BATCH at a time, each batch's kicks from the kept layouts in turn, until
+    DERIVED_PER_VARIANT in a row keep nothing: a few chains cost less than the 3-8 rounds a
+    new seed needs on a plan with cycles. The quick tries then go on where they stopped
+    (a seed's layout kept starts the kicks again), until N are kept,
     1 + SEEDS_PER_VARIANT * (N - 1) seeds are used or QUICK_FAILURES * N quick tries found
     nothing. Then the seeds whose tries found nothing go on, in seed order, with the rounds
     of each later tier of ROUND_TIERS in turn, until N are kept; then layouts within
@@ -361,7 +372,7 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     kept: list[tuple[int, Layout, dict, int | None]] = []
     close: list[tuple[int, Layout, int | None]] = []
     failed: list[tuple[int, object]] = []
-    origins: list[tuple[int, object]] = []
+    origins: list[tuple[int, object, int]] = []  # (seed, generator.Origin, variant number)
 
     def take(job: Job, outcome: tuple, how: str) -> None:
         layout, _, resume, origin = outcome
@@ -372,10 +383,11 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
         centres = layout_centres(layout)
         if all(difference(centres, other) >= MIN_PAIRWISE for _, _, other, _ in kept):
             kept.append((job.seed, layout, centres, job.derived))
-            if origin is not None and not origins and job.source != "derived":
-                origins.append((job.seed, origin))
+            if origin is not None:
+                origins.append((job.seed, origin, len(kept)))
             if progress is not None:
-                what = f"seed {job.seed}" + (f", kick {job.derived} of its layout" if job.derived else "")
+                what = f"seed {job.seed}" + (f", kick {job.derived} of variant {job.from_variant}"
+                                             if job.derived else "")
                 progress(f"variant {len(kept)} of {n}: {what} ({how})")
         else:
             close.append((job.seed, layout, job.derived))
@@ -386,7 +398,11 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     def quick_done() -> bool:
         return enough() or len(failed) >= QUICK_FAILURES * n
 
-    derived_from: list[int] = []
+    derived_until = [0]  # origins there were when the kicks last stopped
+    kicks_made = [0]
+
+    def new_origin() -> bool:
+        return len(origins) > derived_until[0]
 
     def run(jobs: list[Job], how: str, stop: Callable[[], bool]) -> list[Job]:
         """The jobs' outcomes taken in job order until `stop()`; the jobs not taken."""
@@ -396,25 +412,30 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
             take(job, outcome, how)
         return jobs[done:]
 
-    def derive_from_first() -> None:
-        # once, from the first seed's layout kept: one chain a try instead of whole rounds
-        if derived_from or not origins or enough():
-            return
-        base_seed, origin = origins[0]
-        derived_from.append(base_seed)
-        derived = [Job(base_seed, options, None, "derived", resume=origin, derived=k)
-                   for k in range(1, 1 + DERIVED_PER_VARIANT * (n - len(kept)))]
-        before = len(kept)
-        tried = 0
+    def derive_more() -> None:
+        # kicks of the kept layouts, DERIVE_BATCH at a time, until DERIVED_PER_VARIANT in a
+        # row keep nothing: one short walk a try instead of whole rounds
+        idle = 0
+        while new_origin() and not enough() and idle < DERIVED_PER_VARIANT:
+            batch = []
+            for _ in range(DERIVE_BATCH):
+                kicks_made[0] += 1
+                base_seed, origin, variant = origins[kicks_made[0] % len(origins)]
+                batch.append(Job(base_seed, options, None, "derived", resume=origin, derived=kicks_made[0],
+                                 from_variant=variant))
+            for job, outcome in _in_seed_order(spec, batch, workers,
+                                               lambda: enough() or idle >= DERIVED_PER_VARIANT):
+                before = len(kept)
+                take(job, outcome, "derived")
+                idle = 0 if len(kept) > before else idle + 1
+        derived_until[0] = len(origins)
 
-        def hopeless() -> bool:
-            # a plan whose kicks keep nothing (office_floorplanLOWER: they come back 0.22-0.26
-            # from their origin) goes back to seeds soon
-            return tried >= DERIVED_PER_VARIANT and len(kept) == before
-
-        for job, outcome in _in_seed_order(spec, derived, workers, lambda: enough() or hopeless()):
-            tried += 1
-            take(job, outcome, "derived")
+    def run_deriving(jobs: list[Job], how: str, stop: Callable[[], bool]) -> None:
+        # the jobs in order until `stop()`, the kicks of each new layout kept made before the
+        # next job's outcome is taken
+        while jobs and not stop():
+            jobs = run(jobs, how, lambda: stop() or new_origin())
+            derive_more()
 
     def tiers(until_first: bool) -> None:
         # the seeds whose last try found nothing, with each later tier's rounds in turn, each
@@ -425,10 +446,7 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
                 break
             longer = [Job(s, options, None, "graph", tier, resume) for s, resume in failed]
             failed.clear()
-            how = "full construction" if tier is None else f"{tier} rounds"
-            rest = run(longer, how, lambda: enough() or (bool(origins) and not derived_from))
-            derive_from_first()
-            run(rest, how, enough)
+            run_deriving(longer, "full construction" if tier is None else f"{tier} rounds", enough)
 
     quick = [Job(s, options, None, "graph", ROUND_TIERS[0]) for s in range(seed, seed + 1 + SEEDS_PER_VARIANT * (n - 1))]
     # before any layout, a plan whose quick tries fail goes deeper after FIRST_FAILURES of
@@ -436,10 +454,10 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     # which the rest are derived
     rest = run(quick, "quick try",
                lambda: quick_done() or bool(origins) or len(failed) >= FIRST_FAILURES * workers)
-    derive_from_first()
+    derive_more()
     if not origins:
         tiers(until_first=True)
-    run(rest, "quick try", quick_done)
+    run_deriving(rest, "quick try", quick_done)
     tiers(until_first=False)
     chosen = [(s, layout, kick) for s, layout, _, kick in kept]
     for variant_seed, layout, kick in close[:n - len(kept)]:
