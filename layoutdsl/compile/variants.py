@@ -313,7 +313,7 @@ SEEDS_PER_VARIANT = 3
 """Quick tries (one seed each) new arrangements may take per variant asked for beyond the
 first, before the seeds whose quick try found nothing get their full construction."""
 
-DERIVED_PER_VARIANT = 12
+KICKS_WITHOUT_KEEP = 12
 """Kicks (generator.derive) that may keep nothing in a row before compile goes back to
 seeds; a seed's layout kept later starts the kicks again. Measured on office_floorplanMAIN:
 8 kicks in 56 gave a layout 0.3 or more from their origin, on school_wilbraham 3 in 24, on
@@ -351,7 +351,7 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     before it. Once one is kept, kicks 1, 2, ... of the kept layouts (generator.derive: a
     few rooms traded, a short walk of chains, a short sizing) are tried the same way,
     DERIVE_BATCH at a time, each batch's kicks from the kept layouts in turn, until
-    DERIVED_PER_VARIANT in a row keep nothing: a few chains cost less than the 3-8 rounds a
+    KICKS_WITHOUT_KEEP in a row keep nothing: a few chains cost less than the 3-8 rounds a
     new seed needs on a plan with cycles. The quick tries then go on where they stopped
     (a seed's layout kept starts the kicks again), until N are kept,
     1 + SEEDS_PER_VARIANT * (N - 1) seeds are used or QUICK_FAILURES * N quick tries found
@@ -413,10 +413,10 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
         return jobs[done:]
 
     def derive_more() -> None:
-        # kicks of the kept layouts, DERIVE_BATCH at a time, until DERIVED_PER_VARIANT in a
+        # kicks of the kept layouts, DERIVE_BATCH at a time, until KICKS_WITHOUT_KEEP in a
         # row keep nothing: one short walk a try instead of whole rounds
         idle = 0
-        while new_origin() and not enough() and idle < DERIVED_PER_VARIANT:
+        while new_origin() and not enough() and idle < KICKS_WITHOUT_KEEP:
             batch = []
             for _ in range(DERIVE_BATCH):
                 kicks_made[0] += 1
@@ -424,7 +424,7 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
                 batch.append(Job(base_seed, options, None, "derived", resume=origin, derived=kicks_made[0],
                                  from_variant=variant))
             for job, outcome in _in_seed_order(spec, batch, workers,
-                                               lambda: enough() or idle >= DERIVED_PER_VARIANT):
+                                               lambda: enough() or idle >= KICKS_WITHOUT_KEEP):
                 before = len(kept)
                 take(job, outcome, "derived")
                 idle = 0 if len(kept) > before else idle + 1
