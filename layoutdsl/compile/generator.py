@@ -287,9 +287,8 @@ def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = No
         if found is None:
             return Generated(None, current.spec, "", 1, moves, cut_off=True, turned=tuple(turned))
         moves += found.moves
-        geometry = current.rooms.geometry(found.state)
-        if found.violation <= WORK["repair_max_violation_m"] and \
-                _difference(origin_geometry, geometry) >= WORK["derive_min_difference"]:
+        if found.violation <= WORK["repair_max_violation_m"] and _difference(
+                origin_geometry, current.rooms.geometry(found.state)) >= WORK["derive_min_difference"]:
             layout = _sized_found(current, found, soft, f"derive:{seed}", rng, seed, limits,
                                   rounds=WORK["derive_repair_rounds"])
             if layout is not None:

@@ -398,11 +398,11 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
     def quick_done() -> bool:
         return enough() or len(failed) >= QUICK_FAILURES * n
 
-    derived_until = [0]  # origins there were when the kicks last stopped
-    kicks_made = [0]
+    derived_until = 0  # origins there were when the kicks last stopped
+    kicks_made = 0
 
     def new_origin() -> bool:
-        return len(origins) > derived_until[0]
+        return len(origins) > derived_until
 
     def run(jobs: list[Job], how: str, stop: Callable[[], bool]) -> list[Job]:
         """The jobs' outcomes taken in job order until `stop()`; the jobs not taken."""
@@ -414,21 +414,25 @@ def _new_arrangements(spec: Spec, n: int, seed: int, options, workers: int,
 
     def derive_more() -> None:
         # kicks of the kept layouts, DERIVE_BATCH at a time, until KICKS_WITHOUT_KEEP in a
-        # row keep nothing: one short walk a try instead of whole rounds
+        # row keep nothing: one short walk a try instead of whole rounds; only once a layout
+        # was kept since the kicks last stopped
+        nonlocal derived_until, kicks_made
+        if not new_origin():
+            return
         idle = 0
-        while new_origin() and not enough() and idle < KICKS_WITHOUT_KEEP:
+        while not enough() and idle < KICKS_WITHOUT_KEEP:
             batch = []
             for _ in range(DERIVE_BATCH):
-                kicks_made[0] += 1
-                base_seed, origin, variant = origins[kicks_made[0] % len(origins)]
-                batch.append(Job(base_seed, options, None, "derived", resume=origin, derived=kicks_made[0],
+                kicks_made += 1
+                base_seed, origin, variant = origins[kicks_made % len(origins)]
+                batch.append(Job(base_seed, options, None, "derived", resume=origin, derived=kicks_made,
                                  from_variant=variant))
             for job, outcome in _in_seed_order(spec, batch, workers,
                                                lambda: enough() or idle >= KICKS_WITHOUT_KEEP):
                 before = len(kept)
                 take(job, outcome, "derived")
                 idle = 0 if len(kept) > before else idle + 1
-        derived_until[0] = len(origins)
+        derived_until = len(origins)
 
     def run_deriving(jobs: list[Job], how: str, stop: Callable[[], bool]) -> None:
         # the jobs in order until `stop()`, the kicks of each new layout kept made before the
