@@ -32,11 +32,12 @@ def with_turns(spec: Spec, doors) -> tuple[Spec, list[str]]:
     return with_corridor_arms(spec, pairs, corridors_needed=2)
 
 
-def with_corridor_arms(spec: Spec, groups, corridors_needed: int = 1) -> tuple[Spec, list[str]]:
+def with_corridor_arms(spec: Spec, groups, corridors_needed: int = 1,
+                       longest: bool = False) -> tuple[Spec, list[str]]:
     """The spec with, for each group of rooms none of which is L-shaped yet (nor made so for
     an earlier group) and at least `corridors_needed` of which are corridor-like, one of its
-    corridor-like rooms made an L: the one with the most doors, then the first in spec
-    order. Also the rooms made so."""
+    corridor-like rooms made an L: the one with the most doors (`longest`: the one with the
+    longest target side first), then the first in spec order. Also the rooms made so."""
     graph = room_graph(spec)
     rooms = {room.id: room for room in spec.rooms}
     order = {room_id: index for index, room_id in enumerate(rooms)}
@@ -48,10 +49,14 @@ def with_corridor_arms(spec: Spec, groups, corridors_needed: int = 1) -> tuple[S
         corridors = [r for r in group if r in rooms and rooms[r].rtype == "C"]
         if len(corridors) < max(1, corridors_needed):
             continue
-        chosen = max(corridors, key=lambda r: (graph.degree(r), -order[r]))
+        chosen = max(corridors, key=lambda r: (_long_side(rooms[r]) if longest else 0.0, graph.degree(r), -order[r]))
         armed.add(chosen)
         made.append(chosen)
     return with_arms(spec, made), made
+
+
+def _long_side(room) -> float:
+    return max(room.target_w, room.target_h)
 
 
 def turned_geometry(geometry: dict[str, Rect], made: list[str], doors) -> dict[str, Rect]:

@@ -10,7 +10,8 @@ spec's room shapes cannot draw:
   the fourth cannot touch all three), while one L-room wrapping two of the others can.
 
 A K4 with a corridor-like room (type C: corridors, halls, lobbies) is drawn instead: that
-room gets an arm (`with_l_rooms`), an L that wraps two of the others (shapes.py).
+room gets an arm (`with_l_rooms`), an L that wraps two of the others (shapes.py): the
+longest such room, since its legs must reach round the two it wraps.
 
 Separating triangles (three rooms joined pairwise with rooms both inside and outside the
 triangle) are drawable with rectangles when the triangle's rooms may meet around a point;
@@ -39,10 +40,13 @@ _FALLBACK_SPAN = Span(1, 1, 1, 2)
 
 def with_l_rooms(spec: Spec) -> tuple[Spec, list[str]]:
     """The spec with one corridor-like room of every four rooms joined pairwise (and none
-    L-shaped yet) made an L, and the rooms made so; rooms of type C only, first the one with
-    the most doors (then spec order)."""
+    L-shaped yet) made an L, and the rooms made so; rooms of type C only, the one with the
+    longest target side first (then the most doors, then spec order). The L has to wrap two
+    of the others: a long corridor's legs reach round them where a hall's do not (a hall
+    with more doors than three corridors, made the L, found no layout for two seeds of
+    four; the longest corridor, four of four)."""
     armed = {arm.room for arm in spec.arms}
-    return with_corridor_arms(spec, rectangle_k4s(room_graph(spec), armed))
+    return with_corridor_arms(spec, rectangle_k4s(room_graph(spec), armed), longest=True)
 
 
 def undrawable(spec: Spec) -> list[Diagnostic]:

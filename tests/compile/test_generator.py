@@ -135,6 +135,24 @@ def test_four_corridors_joined_pairwise_are_drawn_with_an_l():
     assert verify(l_spec, result.layout) == []
 
 
+def test_of_four_rooms_joined_pairwise_the_longest_corridor_wraps_the_others():
+    # a hall with more doors than the corridors it is joined to: the L must wrap two of the
+    # others, and a hall's short legs cannot reach round a corridor's length; the longest
+    # corridor's can. Seed 1 found no layout in 30 s with the hall as the L.
+    rooms = [room("H", 8.0, 6.0, rtype="C")] + [room(f"C{i}", 16.0, 2.5, rtype="C") for i in range(3)]
+    rooms += [room(f"R{i}", 4.0, 3.5) for i in range(6)]
+    four = ["H", "C0", "C1", "C2"]
+    pairs = [adjacent(a, b, kind="i") for k, a in enumerate(four) for b in four[k + 1:]]
+    pairs += [adjacent("H", f"R{i}") for i in range(3)] + [adjacent(f"C{i}", f"R{i + 3}") for i in range(3)]
+    spec = Spec("hall_k4", tuple(rooms), Boundary(40.0, 30.0), tuple(pairs))
+    l_spec, made = with_l_rooms(spec)
+    assert made == ["C0"]
+    result = compile_spec(spec, SolveOptions(time_limit=60, seed=1, quiet=True, search=False))
+    assert result.layout is not None, result.diagnostics
+    assert [placed.id for placed in result.layout.rooms if placed.is_l_shaped] == ["C0"]
+    assert verify(l_spec, result.layout) == []
+
+
 def test_a_too_tight_boundary_grows_when_allowed_and_says_so():
     base = tree_spec()
     tight = dataclasses.replace(base, boundary=Boundary(16.0, 12.0))
