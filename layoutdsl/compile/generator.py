@@ -4,7 +4,8 @@
     hints        -> the original plan's boxes, when the spec keeps its arrangement
     initial      -> a sequence pair read off the room graph      (initial.py)
     schedule     -> annealing: moves, one cost, work limits      (schedule.py, moves.py, cost.py)
-    growth       -> a found state's rooms grown to their targets (schedule.grown)
+    growth       -> a found state's rooms grown to their targets (schedule.grown); a layout
+                    sized from an unmet state, read back and grown (_regrown)
     sizing       -> relations fixed, SCIP's LP/MIP finds sizes   (layoutdsl.solve.relations)
     verify       -> the independent verifier                     (layoutdsl.layout.verify)
 
@@ -313,10 +314,45 @@ def _sized_found(current: _Searched, found: schedule.Found, soft: bool, key: str
         target = _drawn_round(current.spec, geometry) if soft else current.spec
         rects = _sized(target, geometry, rng, seed, limits, rounds=rounds)
         if rects is not None:
+            if state is found.state and not soft:
+                rects = _regrown(current, rects, key, rng, seed, limits, rounds) or rects
             return rects, target
         if time.monotonic() >= limits.deadline:
             break
     return None
+
+
+def _regrown(current: _Searched, rects: dict[str, Rect], key: str, rng: random.Random, seed: int,
+             limits: RepairLimits, rounds: int) -> dict[str, Rect] | None:
+    """A layout sized from a state too far from one to grow (so its rooms stayed at the
+    rounds' small sides), grown after all: read back as a state (Rooms.state_of_layout),
+    its doors met again by one cool chain with the rooms held at their sized sides, grown
+    towards the targets (schedule.grown) and sized again. None when a step fails before any
+    growth or the second sizing gives less room area."""
+    rooms = current.rooms
+    if any(room_id not in rects for room_id in rooms.ids):
+        return None
+    start = rooms.state_of_layout(rects)
+    _p, _q, _turned, long_side, short_side = start
+    held = rooms.grown_towards({room_id: (long_side[i], short_side[i]) for i, room_id in enumerate(rooms.ids)},
+                               1.0, WORK["grow_floor"])
+    draw = random.Random(f"regrow:{key}")
+    mended = schedule.one_chain(held, held.fitted(start), draw.randrange(2**31),
+                                WORK["grow_moves_per_room"] * len(rooms.ids), limits.deadline,
+                                WORK["grow_temperature"], zero_stop=0.0, met=WORK["grow_tolerance_m"])
+    if mended is None or mended.violation > WORK["grow_tolerance_m"]:
+        return None
+    grown = schedule.grown(rooms, current.targets, mended.state, draw.randrange(2**31), limits.deadline)
+    if grown is mended.state:
+        return None
+    again = _sized(current.spec, rooms.geometry(grown), rng, seed, limits, rounds=rounds)
+    if again is None or _area(again) <= _area(rects):
+        return None
+    return again
+
+
+def _area(rects: dict[str, Rect]) -> float:
+    return sum(w * h for _x, _y, w, h in rects.values())
 
 
 def _grown_first(current: _Searched, found: schedule.Found, soft: bool, key: str,

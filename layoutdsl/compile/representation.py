@@ -210,6 +210,36 @@ def pack_state(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door
 
 
 
+def _ordered(before: np.ndarray, key: np.ndarray) -> np.ndarray:
+    """A topological order of the graph whose edges are before[a, b] (a before b), the
+    lowest key first among the rooms free to come next; should the graph have a cycle, it
+    is broken at the lowest key among the rooms with fewest predecessors left."""
+    import heapq
+
+    n = len(key)
+    waiting = before.sum(axis=0).astype(np.int64)
+    ready = [(float(key[i]), i) for i in range(n) if waiting[i] == 0]
+    heapq.heapify(ready)
+    placed = np.zeros(n, dtype=np.bool_)
+    order: list[int] = []
+    while len(order) < n:
+        if not ready:
+            rest = [i for i in range(n) if not placed[i]]
+            least = min(waiting[i] for i in rest)
+            ready = [min((float(key[i]), i) for i in rest if waiting[i] == least)]
+        _key, i = heapq.heappop(ready)
+        if placed[i]:
+            continue
+        placed[i] = True
+        order.append(i)
+        for j in np.nonzero(before[i])[0]:
+            if not placed[j]:
+                waiting[j] -= 1
+                if waiting[j] == 0:
+                    heapq.heappush(ready, (float(key[j]), int(j)))
+    return np.array(order, dtype=np.int64)
+
+
 def _bounds(sizes: RoomSizes) -> tuple[float, ...]:
     """(lo long, hi long, lo short, hi short, min ar, max ar); a corridor's ratio is free."""
     if sizes.corridor:
@@ -354,6 +384,33 @@ class Rooms:
             if self.partner[i] >= 0 and ids[i].endswith(ARM_SUFFIX):
                 turned[i] = turned[self.partner[i]] != self.crosses[i]
         return p, q, turned, long_side, short_side
+
+    def state_of_layout(self, geometry: Mapping[str, Rect]) -> State:
+        """The state of a layout (rectangles that do not overlap) that keeps each pair of
+        rooms apart along one axis and overlapping along the other in its relation, so every
+        door the layout meets is between rooms in the same relation again. P orders a before
+        b when a is left of or above b, Q when a is left of or below b (Murata et al.); those
+        pairs are the edges of two graphs, and each order is a topological sort of its graph,
+        ties and the pairs apart along both axes by the centre rule of `state_of`. Packing
+        puts the rooms left and down, so the doors the layout met by position need a chain
+        to meet again."""
+        ids = self.ids
+        x = np.array([geometry[r][0] for r in ids])
+        y = np.array([geometry[r][1] for r in ids])
+        w = np.array([geometry[r][2] for r in ids])
+        h = np.array([geometry[r][3] for r in ids])
+        # gap_x[a, b]: how far a's right side lies left of b's left side; overlap_y[a, b]:
+        # how far their vertical extents overlap (and the same turned)
+        gap_x = x[None, :] - (x + w)[:, None]
+        gap_y = y[None, :] - (y + h)[:, None]
+        overlap_y = np.minimum(y + h, (y + h)[:, None]) - np.maximum(y, y[:, None])
+        overlap_x = np.minimum(x + w, (x + w)[:, None]) - np.maximum(x, x[:, None])
+        left = (gap_x > -1e-6) & (overlap_y > 1e-6)
+        below = (gap_y > -1e-6) & (overlap_x > 1e-6)
+        centre_x, centre_y = x + w / 2, y + h / 2
+        _p, _q, turned, long_side, short_side = self.state_of(geometry)
+        return (_ordered(left | below.T, centre_x - centre_y), _ordered(left | below, centre_x + centre_y),
+                turned, long_side, short_side)
 
     def unmet_doors(self, state: State) -> list[tuple[str, str, float]]:
         """(room, room, metres) of each door the state's packing does not meet, worst first:

@@ -382,3 +382,25 @@ def test_a_pulled_start_puts_a_room_that_must_open_outside_on_the_outside():
         geometry = initial_geometry(spec, rooms, seed, pulled=True)
         centres = {room_id: (x + w / 2, y + h / 2) for room_id, (x, y, w, h) in geometry.items()}
         assert _on_the_outside(centres["E"], list(centres.values())), seed
+
+
+def test_a_layout_read_back_as_a_state_keeps_every_pair_side_by_side_in_its_relation():
+    # rooms apart along one axis and overlapping along the other (every door's two rooms
+    # among them) stand in the same relation in the packing of the read-back state. Rooms
+    # on a long corridor's far end lie within 45 degrees of straight right of its centre,
+    # where the centre rule (state_of) reads them as right of it
+    rooms_ = [room("C", 20.0, 2.0, rtype="C", var=0.4)] + [room(f"R{i}", 4.0, 4.0) for i in range(4)]
+    pairs = [adjacent("C", f"R{i}") for i in range(4)]
+    spec = Spec("comb", tuple(rooms_), Boundary(30.0, 30.0), tuple(pairs))
+    rects = {"C": (0.0, 0.0, 20.0, 2.0), "R0": (0.0, 2.1, 4.0, 4.0), "R1": (5.0, 2.1, 4.0, 4.0),
+             "R2": (10.0, 2.1, 4.0, 4.0), "R3": (15.0, 2.1, 4.0, 4.0)}
+    outline = (spec.boundary.w, spec.boundary.h)
+    rooms = Rooms.of(spec, drawn_sides(spec, outline), outline, outline_given=True)
+    packed = rooms.geometry(rooms.state_of_layout(rects))
+    for a, (ax, ay, aw, ah) in rects.items():
+        for b, (bx, by, bw, bh) in rects.items():
+            if a != b and ax + aw <= bx + 1e-6 and min(ay + ah, by + bh) - max(ay, by) > 1e-6:
+                assert packed[a][0] + packed[a][2] <= packed[b][0] + 1e-6, (a, b)
+            if a != b and ay + ah <= by + 1e-6 and min(ax + aw, bx + bw) - max(ax, bx) > 1e-6:
+                assert packed[a][1] + packed[a][3] <= packed[b][1] + 1e-6, (a, b)
+    assert rooms.unmet_doors(rooms.state_of_layout(rects)) == []
