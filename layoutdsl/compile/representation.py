@@ -20,6 +20,7 @@ millions of states per compile.
 
 from __future__ import annotations
 
+import heapq
 from collections import namedtuple
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
@@ -214,8 +215,6 @@ def _ordered(before: np.ndarray, key: np.ndarray) -> np.ndarray:
     """A topological order of the graph whose edges are before[a, b] (a before b), the
     lowest key first among the rooms free to come next; should the graph have a cycle, it
     is broken at the lowest key among the rooms with fewest predecessors left."""
-    import heapq
-
     n = len(key)
     waiting = before.sum(axis=0).astype(np.int64)
     ready = [(float(key[i]), i) for i in range(n) if waiting[i] == 0]
