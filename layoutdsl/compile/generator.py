@@ -291,7 +291,7 @@ def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = No
         if found.violation <= WORK["repair_max_violation_m"] and _difference(
                 origin_geometry, current.rooms.geometry(found.state)) >= WORK["derive_min_difference"]:
             # not regrown: of office_floorplanMAIN's 25 derived variants none gained room area
-            # from it, and it cost 14 % of the variants a minute (8.5 -> 7.3)
+            # from it, and it cost 9 % of the variants a minute (7.3 against 8.0)
             layout = _sized_found(current, found, soft, f"derive:{seed}", rng, seed, limits,
                                   rounds=WORK["derive_repair_rounds"], regrow=False)
             if layout is not None:
