@@ -368,21 +368,11 @@ class Rooms:
         """The state of a geometry whose rectangles may overlap: P by x - y of the centres,
         Q by x + y (a room whose centre lies within 45 degrees of straight left of another's
         is left of it, and so on round); sides clamped to the room's bounds."""
-        ids = self.ids
-        cx = np.array([geometry[r][0] + geometry[r][2] / 2 for r in ids])
-        cy = np.array([geometry[r][1] + geometry[r][3] / 2 for r in ids])
-        w = np.array([geometry[r][2] for r in ids])
-        h = np.array([geometry[r][3] for r in ids])
-        p = np.array(sorted(range(len(ids)), key=lambda i: (cx[i] - cy[i], i)), dtype=np.int64)
-        q = np.array(sorted(range(len(ids)), key=lambda i: (cx[i] + cy[i], i)), dtype=np.int64)
-        long_side = np.clip(np.maximum(w, h), self.bounds[:, 0], self.bounds[:, 1])
-        short_side = np.minimum(np.clip(np.minimum(w, h), self.bounds[:, 2], self.bounds[:, 3]), long_side)
-        turned = h > w
-        # an L's arm turned as its shape says against its box (the box, the larger, keeps its way)
-        for i in range(len(ids)):
-            if self.partner[i] >= 0 and ids[i].endswith(ARM_SUFFIX):
-                turned[i] = turned[self.partner[i]] != self.crosses[i]
-        return p, q, turned, long_side, short_side
+        x, y, w, h = self._boxes(geometry)
+        cx, cy = x + w / 2, y + h / 2
+        p = np.array(sorted(range(len(self.ids)), key=lambda i: (cx[i] - cy[i], i)), dtype=np.int64)
+        q = np.array(sorted(range(len(self.ids)), key=lambda i: (cx[i] + cy[i], i)), dtype=np.int64)
+        return (p, q, *self._sides(w, h))
 
     def state_of_layout(self, geometry: Mapping[str, Rect]) -> State:
         """The state of a layout (rectangles that do not overlap) that keeps each pair of
@@ -393,11 +383,7 @@ class Rooms:
         ties and the pairs apart along both axes by the centre rule of `state_of`. Packing
         puts the rooms left and down, so the doors the layout met by position need a chain
         to meet again."""
-        ids = self.ids
-        x = np.array([geometry[r][0] for r in ids])
-        y = np.array([geometry[r][1] for r in ids])
-        w = np.array([geometry[r][2] for r in ids])
-        h = np.array([geometry[r][3] for r in ids])
+        x, y, w, h = self._boxes(geometry)
         # gap_x[a, b]: how far a's right side lies left of b's left side; overlap_y[a, b]:
         # how far their vertical extents overlap (and the same turned)
         gap_x = x[None, :] - (x + w)[:, None]
@@ -406,10 +392,24 @@ class Rooms:
         overlap_x = np.minimum(x + w, (x + w)[:, None]) - np.maximum(x, x[:, None])
         left = (gap_x > -1e-6) & (overlap_y > 1e-6)
         below = (gap_y > -1e-6) & (overlap_x > 1e-6)
-        centre_x, centre_y = x + w / 2, y + h / 2
-        _p, _q, turned, long_side, short_side = self.state_of(geometry)
-        return (_ordered(left | below.T, centre_x - centre_y), _ordered(left | below, centre_x + centre_y),
-                turned, long_side, short_side)
+        cx, cy = x + w / 2, y + h / 2
+        return (_ordered(left | below.T, cx - cy), _ordered(left | below, cx + cy), *self._sides(w, h))
+
+    def _boxes(self, geometry: Mapping[str, Rect]) -> tuple[np.ndarray, ...]:
+        """(x, y, w, h) of the rooms' rectangles, in room order."""
+        return tuple(np.array([geometry[r][k] for r in self.ids]) for k in range(4))
+
+    def _sides(self, w: np.ndarray, h: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """(turned, long side, short side) of rectangles w x h, the sides clamped to the
+        rooms' bounds."""
+        long_side = np.clip(np.maximum(w, h), self.bounds[:, 0], self.bounds[:, 1])
+        short_side = np.minimum(np.clip(np.minimum(w, h), self.bounds[:, 2], self.bounds[:, 3]), long_side)
+        turned = h > w
+        # an L's arm turned as its shape says against its box (the box, the larger, keeps its way)
+        for i in range(len(self.ids)):
+            if self.partner[i] >= 0 and self.ids[i].endswith(ARM_SUFFIX):
+                turned[i] = turned[self.partner[i]] != self.crosses[i]
+        return turned, long_side, short_side
 
     def unmet_doors(self, state: State) -> list[tuple[str, str, float]]:
         """(room, room, metres) of each door the state's packing does not meet, worst first:

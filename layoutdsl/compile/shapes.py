@@ -14,7 +14,7 @@ from __future__ import annotations
 from dataclasses import replace
 
 from layoutdsl.compile.graph import room_graph
-from layoutdsl.layout.geometry import Rect
+from layoutdsl.layout.geometry import Rect, RoomSizes
 from layoutdsl.syntax.ast import ARM_SUFFIX, Arm, Room, Spec, arm_id
 
 BOX_SHARE = 0.7
@@ -49,14 +49,11 @@ def with_corridor_arms(spec: Spec, groups, corridors_needed: int = 1,
         corridors = [r for r in group if r in rooms and rooms[r].rtype == "C"]
         if len(corridors) < max(1, corridors_needed):
             continue
-        chosen = max(corridors, key=lambda r: (_long_side(rooms[r]) if longest else 0.0, graph.degree(r), -order[r]))
+        chosen = max(corridors, key=lambda r: (RoomSizes.of(rooms[r]).target_long if longest else 0.0,
+                                               graph.degree(r), -order[r]))
         armed.add(chosen)
         made.append(chosen)
     return with_arms(spec, made), made
-
-
-def _long_side(room) -> float:
-    return max(room.target_w, room.target_h)
 
 
 def turned_geometry(geometry: dict[str, Rect], made: list[str], doors) -> dict[str, Rect]:
