@@ -210,10 +210,12 @@ I909 = register(
     Severity.INFO,
     "doors-left-unmet",
     "Accompanies E902 when the generator found no layout: names the doors its closest "
-    "arrangement left unmet, worst first, at the adjacency line of the worst one.",
+    "arrangement left unmet, worst first, at the adjacency line of the worst one, and the "
+    "rooms that lay between the two rooms of each.",
     "They are where the room graph is hard to draw within the sizes and the boundary: rooms "
     "with more doors than their walls hold, cycles of rooms that cannot all close, entrances "
-    "that must reach the outside. Wider size ranges for those rooms, a larger boundary, or "
+    "that must reach the outside, a long corridor between two rooms joined by a door (the "
+    "door must reach round one of its ends). Wider size ranges for those rooms, a larger boundary, or "
     "another door of the cycle dropped make the search's task easier; another `--seed` "
     "draws other arrangements.",
     "# compile: no layout within the limit\n# note: in the closest arrangement found (12.4 m "
@@ -235,8 +237,10 @@ def _door_name(a: str, b: str) -> str:
     return f"{_room_name(a)}-{_room_name(b)}"
 
 
-def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: int, moves: int) -> Diagnostic:
-    """I909: the doors the generator's closest arrangement left unmet (see I909's page)."""
+def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: int, moves: int,
+                between: tuple[tuple[str, ...], ...] = ()) -> Diagnostic:
+    """I909: the doors the generator's closest arrangement left unmet (see I909's page);
+    `between`, one per door of `unmet`: the rooms that lay between its two rooms there."""
     a, b, _metres = unmet[0]
     span, label = _first_line_span(spec), "the door furthest from met"
     a, b = a.removesuffix(ARM_SUFFIX), b.removesuffix(ARM_SUFFIX)
@@ -269,6 +273,7 @@ def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: i
         else:
             notes.append(f"{x}-{y} closes triangles of doors with {' and '.join(third)}: both ends of the "
                          f"wall {x} and {y} share are pinned where three rooms meet")
+    notes += _rooms_between_notes(spec, unmet[:UNMET_SHOWN], between)
     return Diagnostic(
         code=I909,
         message=f"the generator's closest arrangement ({rounds} rounds, {moves:,} moves) left "
@@ -281,6 +286,39 @@ def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: i
         help="these rooms are where the graph is hard to draw: wider size ranges for them, a larger "
              "boundary or `--grow-boundary`, or another `--seed`",
     )
+
+
+def _rooms_between_notes(spec: Spec, unmet: tuple[tuple[str, str, float], ...],
+                         between: tuple[tuple[str, ...], ...]) -> list[str]:
+    """For each door of `unmet` with rooms between its two rooms in the closest arrangement:
+    which rooms, and how long the one covering most of the gap is, since the door must reach
+    round one of its ends (mostly a long corridor between two others joined by a door)."""
+    from layoutdsl.layout.geometry import RoomSizes
+
+    rooms = {room.id: room for room in spec.rooms}
+    arms = {arm.room: arm for arm in spec.arms}
+    notes = []
+    for (x, y, metres), lying in zip(unmet, between):
+        if metres < 0.1 or not lying or x.removesuffix(ARM_SUFFIX) == y.removesuffix(ARM_SUFFIX):
+            continue
+        names = list(dict.fromkeys(room_id.removesuffix(ARM_SUFFIX) for room_id in lying))
+        names = [name for name in names if name not in (x.removesuffix(ARM_SUFFIX), y.removesuffix(ARM_SUFFIX))]
+        if not names:
+            continue
+        first = rooms.get(names[0])
+        length = ""
+        if first is not None:
+            arm = arms.get(first.id)
+            length = (f" (an L: its box {RoomSizes.of(first).target_long:.1f} m and its arm "
+                      f"{max(arm.target_w, arm.target_h):.1f} m long)" if arm is not None else
+                      f" ({RoomSizes.of(first).target_long:.1f} m long)")
+        shown = ", ".join(names[:UNMET_SHOWN]) + (f" and {len(names) - UNMET_SHOWN} more"
+                                                   if len(names) > UNMET_SHOWN else "")
+        one = len(names) == 1
+        notes.append(f"{_door_name(x, y)}: {shown} lay between them{length if one else ''}, "
+                     + ("so the door must reach round one of its ends" if one else
+                        f"so the door must reach round them ({names[0]}{length} the most)"))
+    return notes
 
 
 I911 = register(

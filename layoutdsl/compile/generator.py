@@ -43,7 +43,7 @@ from layoutdsl.compile.budgets import WORK
 from layoutdsl.compile.representation import Rooms
 from layoutdsl.layout import lshape
 from layoutdsl.layout.difference import difference, rect_centres
-from layoutdsl.layout.geometry import Rect
+from layoutdsl.layout.geometry import Rect, rooms_between
 from layoutdsl.solve.relations import (
     RepairLimits,
     boxed_problem,
@@ -80,6 +80,10 @@ class Generated:
     unmet: tuple[tuple[str, str, float], ...] = ()
     """Without rectangles: the doors the closest annealed arrangement left unmet, (room,
     room, metres) worst first; they say where the room graph is hard to draw."""
+    between: tuple[tuple[str, ...], ...] = ()
+    """Without rectangles, one per door of `unmet`: the rooms (an L's arm by its arm id)
+    that lay between its two rooms in the closest arrangement, the one that covers most of
+    the gap first: what the door would have to reach round."""
     away: tuple[tuple[str, float], ...] = ()
     """Without rectangles: the rooms that must open to the outside (onB) the closest
     arrangement left inside, (room, metres from the outside) furthest first."""
@@ -216,9 +220,11 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
             return Generated(None, current.spec, "", done_rounds, moves, cut_off=cut_off, turned=tuple(turned),
                              resume=resume)
         away, overflow = current.rooms.outside_shortfall(best[0].state)
+        unmet = current.rooms.unmet_doors(best[0].state)
+        geometry = current.rooms.geometry(best[0].state)
         return Generated(None, current.spec, "", done_rounds, moves, cut_off=cut_off,
-                         unmet=tuple(current.rooms.unmet_doors(best[0].state)), away=tuple(away),
-                         overflow=overflow, turned=tuple(turned), resume=resume)
+                         unmet=tuple(unmet), between=tuple(tuple(rooms_between(geometry, a, b)) for a, b, _m in unmet),
+                         away=tuple(away), overflow=overflow, turned=tuple(turned), resume=resume)
 
     for found in schedule.rounds(lambda _round: current.rooms, starts, seed, limits.deadline, max_rounds,
                                  first_round=done_rounds):

@@ -174,7 +174,8 @@ def _with_closest_arrangement(result: CompileResult, spec: Spec, generated: Gene
         return result  # a layout, or a proof that there is none (E901), says more
     notes = []
     if generated.unmet:
-        notes.append(explain.unmet_doors(spec, generated.unmet, generated.rounds, generated.moves))
+        notes.append(explain.unmet_doors(spec, generated.unmet, generated.rounds, generated.moves,
+                                         generated.between))
     if generated.away or any(metres > 0 for metres in generated.overflow):
         notes.append(explain.outside_shortfall(spec, generated.away, generated.overflow, generated.rounds,
                                                generated.moves))

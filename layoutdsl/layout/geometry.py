@@ -30,6 +30,37 @@ def separations(a: Rect, b: Rect) -> tuple[float, float]:
     return (max(bx - ax - aw, ax - bx - bw), max(by - ay - ah, ay - by - bh))
 
 
+def gap_between(a: Rect, b: Rect) -> Rect:
+    """(x1, y1, x2, y2) of the space between two rectangles that do not overlap: along the
+    stretch where they face each other, or, where they face each other along neither axis,
+    the box between their nearest corners."""
+    ax, ay, aw, ah = a
+    bx, by, bw, bh = b
+    low_x, high_x = max(ax, bx), min(ax + aw, bx + bw)
+    low_y, high_y = max(ay, by), min(ay + ah, by + bh)
+    left, right = (ax + aw, bx) if ax + aw <= bx else (bx + bw, ax)
+    below, above = (ay + ah, by) if ay + ah <= by else (by + bh, ay)
+    if high_y > low_y:
+        return (left, low_y, right, high_y)
+    if high_x > low_x:
+        return (low_x, below, high_x, above)
+    return (left, below, right, above)
+
+
+def rooms_between(geometry: Mapping[str, Rect], a: str, b: str) -> list[str]:
+    """The rectangles of `geometry` other than a and b that reach into the gap between them
+    (gap_between), the one covering most of it first (then by id)."""
+    x1, y1, x2, y2 = gap_between(geometry[a], geometry[b])
+    found = []
+    for other, (x, y, w, h) in geometry.items():
+        if other in (a, b):
+            continue
+        across, up = min(x2, x + w) - max(x1, x), min(y2, y + h) - max(y1, y)
+        if across > 1e-6 and up > 1e-6:
+            found.append((-across * up, other))
+    return [other for _area, other in sorted(found)]
+
+
 def _welded_arm(box: Rect, arm: Rect) -> Rect:
     """The arm with each edge within WELD of one of the box's edge lines moved onto it: the
     solver joins the two only to its tolerance, and an L whose edges miss each other by a

@@ -30,7 +30,7 @@ from dataclasses import dataclass, replace
 from collections.abc import Callable
 
 from layoutdsl.layout import lshape
-from layoutdsl.layout.geometry import SIDES, Rect, RoomSizes, layout_from_rects, separations
+from layoutdsl.layout.geometry import SIDES, Rect, RoomSizes, gap_between, layout_from_rects, rooms_between, separations
 from layoutdsl.solve.quiet import native_output_silenced
 from layoutdsl.syntax.ast import Room, Spec
 
@@ -1257,7 +1257,7 @@ def compacted(spec: Spec, rects: dict[str, Rect], *, usable_width: float, deadli
             spaces = _box_spaces(current)
             gaps = [gap for gap in facing_gaps(spaces, problem.walldim, PULL_RADIUS)
                     if frozenset((gap.a, gap.b)) not in joined and gap.width > problem.walldim + 1e-3
-                    and not _anything_between(current, gap.a, gap.b)]
+                    and not rooms_between(current, gap.a, gap.b)]
             centres = [_gap_centre(current[gap.a], current[gap.b]) for gap in gaps]
             across: dict[tuple[float, int], dict[Pair, float]] = {}
             for gap, (label, area) in zip(gaps, voids_at(spaces, centres)):
@@ -1304,31 +1304,9 @@ def _pulled(problem: _Problem, options, orientations, pulls: dict[Pair, float], 
     return pulled
 
 
-def _gap_between(a: Rect, b: Rect) -> tuple[float, float, float, float]:
-    """(x1, y1, x2, y2): the space between two rectangles that face each other, along their
-    facing stretch."""
-    ax, ay, aw, ah = a
-    bx, by, bw, bh = b
-    low_y, high_y = max(ay, by), min(ay + ah, by + bh)
-    if high_y > low_y:
-        left, right = (ax + aw, bx) if ax + aw <= bx else (bx + bw, ax)
-        return (left, low_y, right, high_y)
-    low_x, high_x = max(ax, bx), min(ax + aw, bx + bw)
-    below, above = (ay + ah, by) if ay + ah <= by else (by + bh, ay)
-    return (low_x, below, high_x, above)
-
-
-def _anything_between(geometry: dict[str, Rect], a: str, b: str) -> bool:
-    """Does another rectangle reach into the gap between a and b (they do not face each other
-    across it alone)?"""
-    x1, y1, x2, y2 = _gap_between(geometry[a], geometry[b])
-    return any(other not in (a, b) and x < x2 - 1e-6 and x1 < x + w - 1e-6 and y < y2 - 1e-6 and y1 < y + h - 1e-6
-               for other, (x, y, w, h) in geometry.items())
-
-
 def _gap_centre(a: Rect, b: Rect) -> tuple[float, float]:
     """The middle of the gap between two rectangles that face each other."""
-    x1, y1, x2, y2 = _gap_between(a, b)
+    x1, y1, x2, y2 = gap_between(a, b)
     return ((x1 + x2) / 2, (y1 + y2) / 2)
 
 

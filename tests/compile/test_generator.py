@@ -180,6 +180,11 @@ def test_a_graph_rectangles_cannot_draw_reports_the_doors_left_unmet():
     assert all(frozenset((a, b)) in doors and metres > 0 for a, b, metres in generated.unmet)
     assert [m for *_pair, m in generated.unmet] == sorted((m for *_pair, m in generated.unmet), reverse=True)
     assert generated.unmet == generate(spec, seed=0, max_rounds=2).unmet
+    # one list of rooms between per door, of rooms of the spec other than the door's own
+    assert len(generated.between) == len(generated.unmet)
+    ids = {r.id for r in offices}
+    for (a, b, _metres), lying in zip(generated.unmet, generated.between):
+        assert set(lying) <= ids - {a, b}
 
 
 def test_unmet_doors_note_points_at_the_worst_door_and_names_its_triangle():
@@ -199,6 +204,24 @@ def test_unmet_doors_note_points_at_the_worst_door_and_names_its_triangle():
     assert note.span == spec.adjacencies[1].span
     assert f"{b}-{a} 3.5 m" in note.notes[0]
     assert any("triangle" in line and third in line for line in note.notes[1:])
+
+
+def test_unmet_doors_note_names_the_room_between_the_two_and_its_length():
+    from layoutdsl.compile.explain import unmet_doors
+
+    # C1 lay between C0 and C2 in the closest arrangement: the door must reach round its ends
+    rooms = (room("C0", 12.0, 2.0, rtype="C"), room("C1", 30.0, 2.5, rtype="C"), room("C2", 12.0, 2.0, rtype="C"),
+             room("R0", 4.0, 3.0))
+    spec = Spec("apart", rooms, Boundary(40.0, 20.0),
+                (adjacent("C0", "C2"), adjacent("C0", "C1"), adjacent("C1", "R0")))
+    note = unmet_doors(spec, (("C0", "C2", 2.7), ("C1", "R0", 0.05)), rounds=8, moves=1000,
+                       between=(("C1", "R0"), ("C0",)))
+    (line,) = [line for line in note.notes if "between" in line]
+    assert line.startswith("C0-C2: C1, R0 lay between them") and "C1 (30.0 m long)" in line
+    # a door short by less than 0.1 m gets no such line; nor does a door with nothing between
+    plain = unmet_doors(spec, (("C0", "C2", 2.7), ("C1", "R0", 0.05)), rounds=8, moves=1000,
+                        between=((), ("C0",)))
+    assert plain.notes == note.notes[:1]
 
 
 def test_a_too_tight_boundary_without_growth_reports_how_far_the_closest_arrangement_stuck_out():
