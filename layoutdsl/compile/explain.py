@@ -306,18 +306,21 @@ def _rooms_between_notes(spec: Spec, unmet: tuple[tuple[str, str, float], ...],
         if not names:
             continue
         first = rooms.get(names[0])
-        length = ""
+        measure = ""
         if first is not None:
             arm = arms.get(first.id)
-            length = (f" (an L: its box {RoomSizes.of(first).target_long:.1f} m and its arm "
-                      f"{max(arm.target_w, arm.target_h):.1f} m long)" if arm is not None else
-                      f" ({RoomSizes.of(first).target_long:.1f} m long)")
+            measure = (f"is an L, its box {RoomSizes.of(first).target_long:.1f} m and its arm "
+                       f"{max(arm.target_w, arm.target_h):.1f} m long" if arm is not None else
+                       f"is {RoomSizes.of(first).target_long:.1f} m long")
         shown = ", ".join(names[:UNMET_SHOWN]) + (f" and {len(names) - UNMET_SHOWN} more"
                                                    if len(names) > UNMET_SHOWN else "")
-        one = len(names) == 1
-        notes.append(f"{_door_name(x, y)}: {shown} lay between them{length if one else ''}, "
-                     + ("so the door must reach round one of its ends" if one else
-                        f"so the door must reach round them ({names[0]}{length} the most)"))
+        if len(names) == 1:
+            line = f"{_door_name(x, y)}: {shown} lay between them, so the door must reach round one of its ends"
+            line += f"; {names[0]} {measure}" if measure else ""
+        else:
+            line = f"{_door_name(x, y)}: {shown} lay between them, so the door must reach round them"
+            line += f"; {names[0]}, covering most of the gap, {measure}" if measure else ""
+        notes.append(line)
     return notes
 
 

@@ -30,7 +30,7 @@ def separations(a: Rect, b: Rect) -> tuple[float, float]:
     return (max(bx - ax - aw, ax - bx - bw), max(by - ay - ah, ay - by - bh))
 
 
-def gap_between(a: Rect, b: Rect) -> Rect:
+def gap_between(a: Rect, b: Rect) -> tuple[float, float, float, float]:
     """(x1, y1, x2, y2) of the space between two rectangles that do not overlap: along the
     stretch where they face each other, or, where they face each other along neither axis,
     the box between their nearest corners."""

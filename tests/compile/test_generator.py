@@ -217,7 +217,7 @@ def test_unmet_doors_note_names_the_room_between_the_two_and_its_length():
     note = unmet_doors(spec, (("C0", "C2", 2.7), ("C1", "R0", 0.05)), rounds=8, moves=1000,
                        between=(("C1", "R0"), ("C0",)))
     (line,) = [line for line in note.notes if "between" in line]
-    assert line.startswith("C0-C2: C1, R0 lay between them") and "C1 (30.0 m long)" in line
+    assert line.startswith("C0-C2: C1, R0 lay between them") and "C1, covering most of the gap, is 30.0 m long" in line
     # a door short by less than 0.1 m gets no such line; nor does a door with nothing between
     plain = unmet_doors(spec, (("C0", "C2", 2.7), ("C1", "R0", 0.05)), rounds=8, moves=1000,
                         between=((), ("C0",)))
