@@ -196,13 +196,26 @@ def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagno
         # another seed first: the construction draws its arrangements from it, and on the
         # largest real plan (school_stjoseph, 105 rooms) 2 of seeds 0-7 find nothing in 60 s
         # while the other 6 construct in 16-30 s (bench/results/generation-renamed.txt)
-        help="try another `--seed` (each draws other arrangements to construct), a longer "
-             "limit (`--time-limit`), a larger boundary, wider size ranges (a larger variance "
-             "when importing), " + (
-                 "or `--grow-boundary`"
-                 if not spec.arms else
-                 "`--grow-boundary`, or rectangular rooms (`layoutdsl import --rectangular-only`)"),
+        help=_alternatives(["another `--seed` (each draws other arrangements to construct)",
+                            "a longer limit (`--time-limit`)"]
+                           + ([] if boundary_grows(spec, options) else ["a larger boundary"])
+                           + ["wider size ranges (a larger variance when importing)"]
+                           + ([] if boundary_grows(spec, options) else ["`--grow-boundary`"])
+                           + (["rectangular rooms (`layoutdsl import --rectangular-only`)"] if spec.arms else [])),
     )
+
+
+def _alternatives(things: list[str]) -> str:
+    """'try a, b, or c'."""
+    return "try " + (things[0] if len(things) == 1 else ", ".join(things[:-1]) + ", or " + things[-1])
+
+
+def boundary_grows(spec: Spec, options=None) -> bool:
+    """The boundary is drawn round the building already: the tool chose it (a spec without
+    one) or the compile may grow it (`--grow-boundary`). Advice to enlarge it, or to pass
+    `--grow-boundary`, would then change nothing."""
+    chosen = spec.boundary is not None and spec.boundary.chosen
+    return chosen or bool(getattr(options, "grow_boundary", False))
 
 
 I909 = register(
@@ -238,9 +251,10 @@ def _door_name(a: str, b: str) -> str:
 
 
 def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: int, moves: int,
-                between: tuple[tuple[str, ...], ...] = ()) -> Diagnostic:
+                between: tuple[tuple[str, ...], ...] = (), *, boundary_grows: bool = False) -> Diagnostic:
     """I909: the doors the generator's closest arrangement left unmet (see I909's page);
-    `between`, one per door of `unmet`: the rooms that lay between its two rooms there."""
+    `between`, one per door of `unmet`: the rooms that lay between its two rooms there;
+    `boundary_grows` (see boundary_grows()): no advice to enlarge the boundary."""
     a, b, _metres = unmet[0]
     span, label = _first_line_span(spec), "the door furthest from met"
     a, b = a.removesuffix(ARM_SUFFIX), b.removesuffix(ARM_SUFFIX)
@@ -283,8 +297,8 @@ def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: i
         severity=Severity.INFO,
         label=label,
         notes=tuple(notes),
-        help="these rooms are where the graph is hard to draw: wider size ranges for them, a larger "
-             "boundary or `--grow-boundary`, or another `--seed`",
+        help="these rooms are where the graph is hard to draw: wider size ranges for them, "
+             + ("" if boundary_grows else "a larger boundary or `--grow-boundary`, ") + "or another `--seed`",
     )
 
 

@@ -135,7 +135,7 @@ def compile_from_start(
             # four rooms joined pairwise that an L makes drawable, yet the generator did not
             # draw: say which rooms make the graph hard to draw, and why
             result = replace(result, diagnostics=result.diagnostics + structure.not_placed(spec))
-        return _with_closest_arrangement(result, spec, generated)
+        return _with_closest_arrangement(result, spec, options, generated)
     # a verified start polished with nothing searched after: the model needs only the
     # separations of the start's relations (model.settle_separations, in _polish_start)
     checked = (_verified_start(spec, rects_start)
@@ -163,10 +163,11 @@ def compile_from_start(
         return CompileResult(best[1], [], best[2], timings, outcome)
 
     return _with_closest_arrangement(_no_layout(spec, options, outcome, failures, explain_infeasible, timings, began),
-                                     spec, generated)
+                                     spec, options, generated)
 
 
-def _with_closest_arrangement(result: CompileResult, spec: Spec, generated: Generated | None) -> CompileResult:
+def _with_closest_arrangement(result: CompileResult, spec: Spec, options: SolveOptions,
+                              generated: Generated | None) -> CompileResult:
     """A result without a layout, with what kept the generator's closest arrangement from
     one: I909 names the doors it left unmet (where the room graph is hard to draw), I910
     the entrances it left inside and how far it stuck out of a given boundary."""
@@ -175,7 +176,7 @@ def _with_closest_arrangement(result: CompileResult, spec: Spec, generated: Gene
     notes = []
     if generated.unmet:
         notes.append(explain.unmet_doors(spec, generated.unmet, generated.rounds, generated.moves,
-                                         generated.between))
+                                         generated.between, boundary_grows=explain.boundary_grows(spec, options)))
     if generated.away or any(metres > 0 for metres in generated.overflow):
         notes.append(explain.outside_shortfall(spec, generated.away, generated.overflow, generated.rounds,
                                                generated.moves))

@@ -224,6 +224,26 @@ def test_unmet_doors_note_names_the_room_between_the_two_and_its_length():
     assert plain.notes == note.notes[:1]
 
 
+def test_no_layout_advice_leaves_out_the_boundary_when_it_already_grows_with_the_building():
+    from layoutdsl.compile.explain import no_layout_in_time, unmet_doors
+    from layoutdsl.solve import SolveOptions
+
+    spec = cycle_spec()
+    unmet = ((spec.adjacencies[0].a, spec.adjacencies[0].b, 2.0),)
+    given, grown = SolveOptions(time_limit=5), SolveOptions(time_limit=5, grow_boundary=True)
+    chosen = dataclasses.replace(spec, boundary=dataclasses.replace(spec.boundary, chosen=True))
+    for advice in (no_layout_in_time(spec, given).help, unmet_doors(spec, unmet, rounds=2, moves=10).help):
+        assert "a larger boundary" in advice and "`--grow-boundary`" in advice
+    # a boundary the tool chose, or one the compile may grow, is drawn round the building:
+    # enlarging it, or asking it to grow, would change nothing
+    for advice in (no_layout_in_time(chosen, given).help, no_layout_in_time(spec, grown).help,
+                   unmet_doors(chosen, unmet, rounds=2, moves=10, boundary_grows=True).help):
+        assert "boundary" not in advice and "--seed" in advice
+    assert no_layout_in_time(chosen, given).help == (
+        "try another `--seed` (each draws other arrangements to construct), a longer limit (`--time-limit`), "
+        "or wider size ranges (a larger variance when importing)")
+
+
 def test_a_too_tight_boundary_without_growth_reports_how_far_the_closest_arrangement_stuck_out():
     # the rooms at their smallest take 71 m2, twice the outline's 36 m2
     tight = dataclasses.replace(tree_spec(), boundary=Boundary(6.0, 6.0))
