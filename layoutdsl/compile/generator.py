@@ -232,7 +232,7 @@ def _annealed(spec: Spec, drawn: Spec, rng: random.Random, seed: int, limits: Re
             return ended(cut_off=True)
         done_rounds += 1
         moves += found.moves
-        if not best or (found.violation, found.cost) < (best[0].violation, best[0].cost):
+        if not best or found.rank < best[0].rank:
             best[:] = [found]
         key = (tuple(turned), b"".join(part.tobytes() for part in found.state))
         if found.violation <= WORK["repair_max_violation_m"] and key not in sized:
@@ -305,7 +305,7 @@ def derive(spec: Spec, origin: Origin, *, seed: int, deadline: float | None = No
                 return Generated(rects, target, "derived", 1, moves, grown=_grown(target, boundary),
                                  turned=tuple(turned), origin=Origin(origin.turns, found.state))
             break
-        if found.violation <= WORK["derive_walk_m"]:
+        if found.score <= WORK["derive_walk_m"]:
             state = found.state
     return Generated(None, current.spec, "", 1, moves, cut_off=time.monotonic() >= deadline,
                      turned=tuple(turned))

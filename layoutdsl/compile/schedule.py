@@ -9,7 +9,7 @@ the room graph (initial.py), through random moves (moves.py), scored by one cost
   its moves, or at GIVE_UP_AT of them when it is still more than GIVE_UP_M from a layout;
 - a *round* runs CHAINS chains side by side (numba releases the GIL), each seeded from the
   spec's seed, the round and the chain index; the round's result is its best FINISHED chain
-  by (violation, cost, chain index), so which thread ends first never matters;
+  by (score: violation plus guide, cost, chain index), so which thread ends first never matters;
 - rounds follow one another (`rounds`), each with ROUND_GROWTH times the moves of the one
   before, until the caller has what it needs; the caller's `starts` gives each chain its
   initial state (the generator: the best state so far for chain 0, a new embedding else).
@@ -62,6 +62,14 @@ class Found:
     chain: int
     moves: int
     """Moves made by all the round's chains."""
+    score: float = 0.0
+    """What the search minimised (cost.violation): the violation plus the cost of the
+    packing's extent beyond a guide outline, which is not violation (the boundary is drawn
+    round the packing). Chains and rounds rank their states by it."""
+
+    @property
+    def rank(self) -> tuple[float, float]:
+        return (self.score, self.cost)
 
 
 def chain_seeds(seed: int, round_index: int) -> list[int]:
@@ -92,14 +100,14 @@ def one_chain(rooms: Rooms, start: State, kernel_seed: int, moves: int, deadline
     cancel = np.zeros(1, dtype=np.int64)
     timer = _cancel_at(deadline, cancel)
     try:
-        p, q, turned, long_side, short_side, violation, cost, done = run_chain(
+        p, q, turned, long_side, short_side, score, violation, cost, done = run_chain(
             rooms, start, kernel_seed, moves, cancel, start_temperature, zero_stop, met)
     finally:
         if timer is not None:
             timer.cancel()
     if cancel[0]:
         return None
-    return Found((p, q, turned, long_side, short_side), float(violation), float(cost), 0, 0, int(done))
+    return Found((p, q, turned, long_side, short_side), float(violation), float(cost), 0, 0, int(done), float(score))
 
 
 def grown(rooms: Rooms, targets: dict[str, tuple[float, float]], start: State, kernel_seed: int,
@@ -152,10 +160,10 @@ def rounds(rooms_of: Callable[[int], Rooms], starts, seed: int, deadline: float 
             if cancel[0]:
                 yield None
                 return
-            best = min(range(CHAINS), key=lambda c: (results[c][5], results[c][6], c))
-            p, q, turned, long_side, short_side, violation, cost, _done = results[best]
+            best = min(range(CHAINS), key=lambda c: (results[c][5], results[c][7], c))
+            p, q, turned, long_side, short_side, score, violation, cost, _done = results[best]
             yield Found((p, q, turned, long_side, short_side), float(violation), float(cost), round_index,
-                        best, int(sum(r[7] for r in results)))
+                        best, int(sum(r[8] for r in results)), float(score))
 
 
 def _cancel_at(deadline: float | None, cancel: np.ndarray) -> threading.Timer | None:
@@ -183,10 +191,10 @@ def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, join, group_en
     # spare arrays, which trade places with the state's when the move is taken
     work = new_work(n)
     pack_state(p, q, turned, long_side, short_side, bounds, wall, door_ptr, door_to, work)
-    violation, box = cost_violation(work, edge_a, edge_b, need, join, group_end, on_boundary, width, height, wall,
-                                    outline_given, per_edge)
+    score, violation, box = cost_violation(work, edge_a, edge_b, need, join, group_end, on_boundary, width, height,
+                                           wall, outline_given, per_edge)
     boundary_area = width * height
-    cost = violation + COMPACT_WEIGHT * box / boundary_area
+    cost = score + COMPACT_WEIGHT * box / boundary_area
     resized = 0.0
     for i in range(n):
         resized += drift(i, long_side, short_side, drawn_long, drawn_short)
@@ -194,6 +202,7 @@ def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, join, group_en
     best_p, best_q, best_turned = p.copy(), q.copy(), turned.copy()
     best_long, best_short = long_side.copy(), short_side.copy()
     best_violation = violation
+    best_score = score
     best_cost = cost
     ratio = t_end / t_start
     trial_edge = np.zeros(m)
@@ -204,7 +213,7 @@ def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, join, group_en
         done = step
         if step % CANCEL_CHECK == 0 and cancel[0]:
             break
-        if step == give_up_step and best_violation > give_up_m:
+        if step == give_up_step and best_score > give_up_m:
             break  # GIVE_UP_AT: too far from a layout to get there
         temperature = t_start * ratio ** (step / moves)
         new_p[:] = p
@@ -222,9 +231,9 @@ def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, join, group_en
             new_resized = resized - drift(resized_room, long_side, short_side, drawn_long, drawn_short) \
                 + drift(resized_room, new_long, new_short, drawn_long, drawn_short)
         pack_state(new_p, new_q, new_turned, new_long, new_short, bounds, wall, door_ptr, door_to, work)
-        new_violation, box = cost_violation(work, edge_a, edge_b, need, join, group_end, on_boundary, width, height, wall,
-                                            outline_given, trial_edge)
-        new_cost = new_violation + COMPACT_WEIGHT * box / boundary_area + RESIZE_WEIGHT * new_resized
+        new_score, new_violation, box = cost_violation(work, edge_a, edge_b, need, join, group_end, on_boundary,
+                                                       width, height, wall, outline_given, trial_edge)
+        new_cost = new_score + COMPACT_WEIGHT * box / boundary_area + RESIZE_WEIGHT * new_resized
         delta = new_cost - cost
         if delta <= 0.0 or np.random.random() < math.exp(-delta / temperature):
             p, new_p = new_p, p
@@ -235,16 +244,17 @@ def _chain(drawn_long, drawn_short, bounds, edge_a, edge_b, need, join, group_en
                 short_side, spare_short = spare_short, short_side
             cost, resized = new_cost, new_resized
             per_edge[:] = trial_edge
-            if new_violation < best_violation - 1e-9 or (
-                    abs(new_violation - best_violation) <= 1e-9 and new_cost < best_cost):
+            if new_score < best_score - 1e-9 or (abs(new_score - best_score) <= 1e-9 and new_cost < best_cost):
                 best_p[:] = p
                 best_q[:] = q
                 best_turned[:] = turned
                 best_long[:] = long_side
                 best_short[:] = short_side
                 best_violation = new_violation
+                best_score = new_score
                 best_cost = new_cost
-        if best_violation <= met and step >= zero_stop * moves:
-            # a packing with every door met: the rest would only make it more compact
+        if best_score <= met and step >= zero_stop * moves:
+            # a packing with every door met, within its guide outline if it has one: the rest
+            # would only make it more compact
             break
-    return best_p, best_q, best_turned, best_long, best_short, best_violation, best_cost, done + 1
+    return best_p, best_q, best_turned, best_long, best_short, best_score, best_violation, best_cost, done + 1

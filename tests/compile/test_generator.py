@@ -314,6 +314,40 @@ def test_an_l_rooms_arm_met_along_the_middle_of_its_box_is_not_yet_a_layout():
     assert np.array_equal(rooms_tall.join, rooms.join)
 
 
+def test_beyond_a_guide_outline_is_cost_not_violation_and_beyond_a_given_one_is_violation():
+    """An outline the tool chose (or --grow-boundary may grow) has the boundary drawn round
+    the packing: a packing with every door met is a layout however far it overflows, and the
+    overflow only steers the search. Beyond an outline the spec gives it is violation."""
+    import numpy as np
+
+    from layoutdsl.compile.cost import CHOSEN_OVERFLOW_WEIGHT, OVERFLOW_WEIGHT
+    from layoutdsl.compile.cost import violation as cost_violation
+    from layoutdsl.compile.representation import new_work, pack_state
+
+    # two 8 x 4 rooms side by side with their door met: 16.2 m wide in a 10 x 10 outline
+    spec = Spec("wide", (room("A", 8.0, 4.0, var=0.0), room("B", 8.0, 4.0, var=0.0)), Boundary(10.0, 10.0),
+                (adjacent("A", "B"),))
+    geometry = {"A": (0.0, 0.0, 8.0, 4.0), "B": (8.2, 0.0, 8.0, 4.0)}
+    sides = {"A": (8.0, 4.0), "B": (8.0, 4.0)}
+    found = {}
+    for given in (True, False):
+        rooms = Rooms.of(spec, sides, (10.0, 10.0), outline_given=given)
+        p, q, turned, long_side, short_side = rooms.state_of(geometry)
+        work = new_work(2)
+        pack_state(p, q, turned, long_side, short_side, rooms.bounds, rooms.wall, rooms.door_ptr, rooms.door_to, work)
+        assert rooms.unmet_doors((p, q, turned, long_side, short_side)) == []
+        found[given] = cost_violation(work, rooms.edge_a, rooms.edge_b, rooms.need, rooms.join, rooms.group_end,
+                                      rooms.on_boundary, rooms.width, rooms.height, rooms.wall, rooms.outline_given,
+                                      np.zeros(rooms.edge_a.shape[0]))
+    right = float(work.x.max() + 8.0)
+    assert right > 16.0
+    # (score the search minimises, violation from a layout, bounding box area)
+    score, violation, _box = found[True]
+    assert violation == score == pytest.approx(OVERFLOW_WEIGHT * (right - 10.0))
+    score, violation, _box = found[False]
+    assert violation == 0.0 and score == pytest.approx(CHOSEN_OVERFLOW_WEIGHT * (right - 10.0))
+
+
 def test_an_l_rooms_arm_turns_with_its_box_so_a_packing_keeps_the_l_shape():
     """The sizing stage joins an L's arm to its box in the shape the L has (an arm across
     its box stays across it); so every state the annealer packs has it so: an arm read off
