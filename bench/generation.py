@@ -26,6 +26,10 @@ depend on the machine and its load; say so when quoting them.
     python bench/generation.py --variants 5 --only Sabadell3,Neulengbach1,wilbraham
     python bench/generation.py --only stjoseph --seeds 8 --renamed
 
+`--grow-boundary` compiles each plan with `compile --grow-boundary`: the original's outline
+only guides the packing and the boundary is drawn round it; a `grown` column gives the area
+of the boundary the layout was drawn in over the outline's (1.00: not grown).
+
 `--renamed` compiles each plan with its rooms renamed and its lines shuffled (renamed()):
 whether the arrangement owes anything to the names and order an import takes from the
 original drawing.
@@ -118,9 +122,10 @@ def compiled_spec(spec, layout):
 
 def _layout_row(spec, layout, area, original_fill, centres) -> dict:
     from layoutdsl.layout.difference import difference, layout_centres
-    from layoutdsl.layout.verify import verify
+    from layoutdsl.layout.verify import drawn_boundary, verify
 
-    spec, _made = compiled_spec(spec, layout)
+    # a boundary the tool chose, or one --grow-boundary grew, as the layout was drawn in
+    spec, _made = compiled_spec(drawn_boundary(spec, layout), layout)
 
     # every rectangle of every room: an L-room's arm too
     rects = [(p.x, p.y, p.w, p.h) for r in layout.rooms for p in r.parts]
@@ -227,7 +232,7 @@ RENAME_SEED = 100
 
 
 def _compile_plan(path: str, time_limit: float, seed: int, rename: bool = False, search: bool = True,
-                  hints: bool = False) -> dict:
+                  hints: bool = False, grow_boundary: bool = False) -> dict:
     from layoutdsl.compile import compile_spec
     from layoutdsl.solve import SolveOptions
 
@@ -237,12 +242,16 @@ def _compile_plan(path: str, time_limit: float, seed: int, rename: bool = False,
     row = {"rooms": len(spec.rooms), "cycles": cycle_rank(spec_graph(spec)),
            "original_void_share": original_void_share(Path(path))}
     began = time.monotonic()
-    result = compile_spec(spec, SolveOptions(time_limit=time_limit, seed=seed, quiet=True, search=search),
-                          explain_infeasible=False)
+    result = compile_spec(spec, SolveOptions(time_limit=time_limit, seed=seed, quiet=True, search=search,
+                                             grow_boundary=grow_boundary), explain_infeasible=False)
     row["seconds"] = round(time.monotonic() - began, 3)
     row["status"] = result.status
     if result.layout is not None:
         row["first"] = result.layout.solve.first_feasible_seconds if result.layout.solve else None
+        grown = result.layout.solve.grown_boundary if result.layout.solve else None
+        if grow_boundary:
+            # the boundary the layout was drawn in against the original's outline: 1.00 not grown
+            row["grown"] = round(grown[0] * grown[1] / (spec.boundary.w * spec.boundary.h), 3) if grown else 1.0
         row.update(_layout_row(spec, result.layout, area, original_fill, centres))
     else:
         row["verified"] = False
@@ -265,6 +274,9 @@ COLUMNS = (
     ("entrances", 7, "{}"), ("void_share", 6, "{:.3f}"), ("original_void_share", 6, "{:.3f}"),
     ("outside_wall", 8, "{}"), ("slivers", 7, "{}"),
 )
+GROWN_COLUMN = ("grown", 6, "{:.2f}")
+"""--grow-boundary: the area of the boundary the layout was drawn in over the outline's."""
+
 HEADERS = {"first": "first s", "seconds": "total s", "difference": "diff", "area_ratio": "area",
            "original_fill": "orig fill", "entrances": "entr", "void_share": "void",
            "original_void_share": "o void", "outside_wall": "outside"}
@@ -535,6 +547,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--keep-arrangement", action="store_true",
                         help="plans: import each with its original arrangement as hints "
                              "(`layoutdsl import --keep-arrangement`)")
+    parser.add_argument("--grow-boundary", action="store_true",
+                        help="plans: compile with `--grow-boundary` (the outline a guide; a `grown` column gives "
+                             "the boundary's area over the outline's)")
     parser.add_argument("--json", action="store_true", help="print JSON rows instead of the table")
     parser.add_argument("--out", type=Path, help="also write the table (or JSON) to this file")
     args = parser.parse_args(argv)
@@ -584,12 +599,14 @@ def main(argv: list[str] | None = None) -> int:
             f"{key:28} {value}" for key, value in result.items()))
     else:
         rows = []
+        columns = COLUMNS + ((GROWN_COLUMN,) if args.grow_boundary else ())
         if not args.json:
-            emit(header())
+            emit(header(columns))
         for path in plan_files(args.folder, args.only):
-            rows += over_seeds(path.stem, args, emit, COLUMNS, lambda seed: isolated(
+            rows += over_seeds(path.stem, args, emit, columns, lambda seed: isolated(
                 _compile_plan, str(path), args.time_limit, seed, args.renamed, not args.first_layout,
-                args.keep_arrangement, limit=args.time_limit), suffix=" renamed" if args.renamed else "")
+                args.keep_arrangement, args.grow_boundary, limit=args.time_limit),
+                suffix=" renamed" if args.renamed else "")
         if not args.json:
             emit(summary(rows))
     if args.out:
