@@ -70,9 +70,10 @@ def violation(work, edge_a, edge_b, need, join, group_end, on_boundary, width, h
     outline the tool chose, or one `--grow-boundary` may grow) is not, since the boundary is
     drawn round the packing. The search minimises `score`, the violation plus what sticks out
     of a guide, which steers it towards the guide's size and shape; `violation` alone says
-    how far a packing is from a layout. Counted as violation, a packing with every door met but 20 m beyond a
-    grown outline stayed over repair_max_violation_m and was never sized (office_floorplanMAIN
-    with --grow-boundary, seed 1: every door met from round 5 on, no layout in 60 s)."""
+    how far a packing is from a layout. Counted as violation, the guide kept a packing with
+    every door met but 20 m beyond a grown outline over repair_max_violation_m, never sized
+    (office_floorplanMAIN with --grow-boundary, seed 1: every door met from round 5 on, no
+    layout in 60 s)."""
     n = work.x.shape[0]
     pos_p, pos_q = work.pos_p, work.pos_q
     x, y, w, h = work.x, work.y, work.w, work.h
