@@ -201,8 +201,16 @@ def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagno
                            + ([] if boundary_grows(spec, options) else ["a larger boundary"])
                            + ["wider size ranges (a larger variance when importing)"]
                            + ([] if boundary_grows(spec, options) else ["`--grow-boundary`"])
-                           + (["rectangular rooms (`layoutdsl import --rectangular-only`)"] if spec.arms else [])),
+                           + (["rectangular rooms (`layoutdsl import --rectangular-only`)"]
+                              if _arms_from_source(spec) else [])),
     )
+
+
+def _arms_from_source(spec: Spec) -> bool:
+    """Does the spec's own text give L-rooms (an `arms` line, as an import writes)? The Ls
+    compile makes itself (a K4's corridor, a corridor turned to reach a door) have no line,
+    and `import --rectangular-only` would not take them away."""
+    return any(arm.span is not None for arm in spec.arms)
 
 
 def _alternatives(things: list[str]) -> str:

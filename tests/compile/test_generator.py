@@ -244,6 +244,21 @@ def test_no_layout_advice_leaves_out_the_boundary_when_it_already_grows_with_the
         "or wider size ranges (a larger variance when importing)")
 
 
+
+def test_no_layout_advice_offers_rectangular_rooms_only_for_l_rooms_the_spec_itself_gives():
+    from layoutdsl.compile.explain import no_layout_in_time
+    from layoutdsl.diagnostics.source import Span
+    from layoutdsl.solve import SolveOptions
+    from layoutdsl.syntax.ast import Arm
+
+    spec = cycle_spec()
+    made = Arm(spec.rooms[0].id, 2.0, 2.0, 2.0, 5.0, 5.0, 5.0, 1.0, 3.0)  # as compile makes one: no line
+    written = dataclasses.replace(made, span=Span(12, 1, 12, 30))  # an `arms` line, as an import writes
+    options = SolveOptions(time_limit=5)
+    assert "--rectangular-only" not in no_layout_in_time(dataclasses.replace(spec, arms=(made,)), options).help
+    assert "--rectangular-only" in no_layout_in_time(dataclasses.replace(spec, arms=(written,)), options).help
+
+
 def test_a_too_tight_boundary_without_growth_reports_how_far_the_closest_arrangement_stuck_out():
     # the rooms at their smallest take 71 m2, twice the outline's 36 m2
     tight = dataclasses.replace(tree_spec(), boundary=Boundary(6.0, 6.0))
