@@ -248,9 +248,9 @@ def _compile_plan(path: str, time_limit: float, seed: int, rename: bool = False,
     row["status"] = result.status
     if result.layout is not None:
         row["first"] = result.layout.solve.first_feasible_seconds if result.layout.solve else None
-        grown = result.layout.solve.grown_boundary if result.layout.solve else None
         if grow_boundary:
             # the boundary the layout was drawn in against the original's outline: 1.00 not grown
+            grown = result.layout.solve.grown_boundary if result.layout.solve else None
             row["grown"] = round(grown[0] * grown[1] / (spec.boundary.w * spec.boundary.h), 3) if grown else 1.0
         row.update(_layout_row(spec, result.layout, area, original_fill, centres))
     else:

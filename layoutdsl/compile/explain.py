@@ -187,6 +187,7 @@ def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagno
         limit = f"the solution limit of {options.solution_limit}"
     else:
         limit = f"the time limit of {options.time_limit:g} s"
+    grows = _boundary_grows(spec, options)
     return Diagnostic(
         code=E902,
         message=f"no layout found within {limit}",
@@ -198,9 +199,9 @@ def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagno
         # while the other 6 construct in 16-30 s (bench/results/generation-renamed.txt)
         help=_alternatives(["another `--seed` (each draws other arrangements to construct)",
                             "a longer limit (`--time-limit`)"]
-                           + ([] if boundary_grows(spec, options) else ["a larger boundary"])
+                           + ([] if grows else ["a larger boundary"])
                            + ["wider size ranges (a larger variance when importing)"]
-                           + ([] if boundary_grows(spec, options) else ["`--grow-boundary`"])
+                           + ([] if grows else ["`--grow-boundary`"])
                            + (["rectangular rooms (`layoutdsl import --rectangular-only`)"]
                               if _arms_from_source(spec) else [])),
     )
@@ -218,7 +219,7 @@ def _alternatives(things: list[str]) -> str:
     return "try " + (things[0] if len(things) == 1 else ", ".join(things[:-1]) + ", or " + things[-1])
 
 
-def boundary_grows(spec: Spec, options=None) -> bool:
+def _boundary_grows(spec: Spec, options=None) -> bool:
     """The boundary is drawn round the building already: the tool chose it (a spec without
     one) or the compile may grow it (`--grow-boundary`). Advice to enlarge it, or to pass
     `--grow-boundary`, would then change nothing."""
@@ -259,10 +260,10 @@ def _door_name(a: str, b: str) -> str:
 
 
 def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: int, moves: int,
-                between: tuple[tuple[str, ...], ...] = (), *, boundary_grows: bool = False) -> Diagnostic:
+                between: tuple[tuple[str, ...], ...] = (), options=None) -> Diagnostic:
     """I909: the doors the generator's closest arrangement left unmet (see I909's page);
     `between`, one per door of `unmet`: the rooms that lay between its two rooms there;
-    `boundary_grows` (see boundary_grows()): no advice to enlarge the boundary."""
+    `options` (the compile's): whether advice to enlarge the boundary would change anything."""
     a, b, _metres = unmet[0]
     span, label = _first_line_span(spec), "the door furthest from met"
     a, b = a.removesuffix(ARM_SUFFIX), b.removesuffix(ARM_SUFFIX)
@@ -306,7 +307,8 @@ def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: i
         label=label,
         notes=tuple(notes),
         help="these rooms are where the graph is hard to draw: wider size ranges for them, "
-             + ("" if boundary_grows else "a larger boundary or `--grow-boundary`, ") + "or another `--seed`",
+             + ("" if _boundary_grows(spec, options) else "a larger boundary or `--grow-boundary`, ")
+             + "or another `--seed`",
     )
 
 
@@ -321,10 +323,11 @@ def _rooms_between_notes(spec: Spec, unmet: tuple[tuple[str, str, float], ...],
     arms = {arm.room: arm for arm in spec.arms}
     notes = []
     for (x, y, metres), lying in zip(unmet, between):
-        if metres < 0.1 or not lying or x.removesuffix(ARM_SUFFIX) == y.removesuffix(ARM_SUFFIX):
+        ends = (x.removesuffix(ARM_SUFFIX), y.removesuffix(ARM_SUFFIX))
+        if metres < 0.1 or not lying or ends[0] == ends[1]:
             continue
-        names = list(dict.fromkeys(room_id.removesuffix(ARM_SUFFIX) for room_id in lying))
-        names = [name for name in names if name not in (x.removesuffix(ARM_SUFFIX), y.removesuffix(ARM_SUFFIX))]
+        names = [name for name in dict.fromkeys(room_id.removesuffix(ARM_SUFFIX) for room_id in lying)
+                 if name not in ends]
         if not names:
             continue
         first = rooms.get(names[0])

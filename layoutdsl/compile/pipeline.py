@@ -176,7 +176,7 @@ def _with_closest_arrangement(result: CompileResult, spec: Spec, options: SolveO
     notes = []
     if generated.unmet:
         notes.append(explain.unmet_doors(spec, generated.unmet, generated.rounds, generated.moves,
-                                         generated.between, boundary_grows=explain.boundary_grows(spec, options)))
+                                         generated.between, options))
     if generated.away or any(metres > 0 for metres in generated.overflow):
         notes.append(explain.outside_shortfall(spec, generated.away, generated.overflow, generated.rounds,
                                                generated.moves))

@@ -237,12 +237,12 @@ def test_no_layout_advice_leaves_out_the_boundary_when_it_already_grows_with_the
     # a boundary the tool chose, or one the compile may grow, is drawn round the building:
     # enlarging it, or asking it to grow, would change nothing
     for advice in (no_layout_in_time(chosen, given).help, no_layout_in_time(spec, grown).help,
-                   unmet_doors(chosen, unmet, rounds=2, moves=10, boundary_grows=True).help):
+                   unmet_doors(chosen, unmet, rounds=2, moves=10, options=given).help,
+                   unmet_doors(spec, unmet, rounds=2, moves=10, options=grown).help):
         assert "boundary" not in advice and "--seed" in advice
     assert no_layout_in_time(chosen, given).help == (
         "try another `--seed` (each draws other arrangements to construct), a longer limit (`--time-limit`), "
         "or wider size ranges (a larger variance when importing)")
-
 
 
 def test_no_layout_advice_offers_rectangular_rooms_only_for_l_rooms_the_spec_itself_gives():
