@@ -62,7 +62,7 @@ class Found:
     chain: int
     moves: int
     """Moves made by all the round's chains."""
-    score: float = 0.0
+    score: float
     """What the search minimised (cost.violation): the violation plus the cost of the
     packing's extent beyond a guide outline, which is not violation (the boundary is drawn
     round the packing). Chains and rounds rank their states by it."""
