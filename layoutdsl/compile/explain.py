@@ -18,6 +18,8 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, replace
 
+import networkx as nx
+
 from layoutdsl.syntax.ast import ARM_SUFFIX, Room, Spec
 from layoutdsl.diagnostics import Diagnostic, Severity, register
 from layoutdsl.diagnostics.source import Span
@@ -235,7 +237,8 @@ I909 = register(
     "arrangement left unmet, worst first, at the adjacency line of the worst one, and the "
     "rooms that lay between the two rooms of each.",
     "They are where the room graph is hard to draw within the sizes and the boundary: rooms "
-    "with more doors than their walls hold, cycles of rooms that cannot all close, entrances "
+    "with more doors than their walls hold, cycles of rooms that cannot all close, rings of "
+    "corridors that must close round the rooms hung inside them, entrances "
     "that must reach the outside, a long corridor between two rooms joined by a door (the "
     "door must reach round one of its ends). Wider size ranges for those rooms, a larger boundary, or "
     "another door of the cycle dropped make the search's task easier; another `--seed` "
@@ -296,6 +299,7 @@ def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: i
         else:
             notes.append(f"{x}-{y} closes triangles of doors with {' and '.join(third)}: both ends of the "
                          f"wall {x} and {y} share are pinned where three rooms meet")
+    notes += _ring_notes(spec, unmet[:UNMET_SHOWN])
     notes += _rooms_between_notes(spec, unmet[:UNMET_SHOWN], between)
     return Diagnostic(
         code=I909,
@@ -310,6 +314,49 @@ def unmet_doors(spec: Spec, unmet: tuple[tuple[str, str, float], ...], rounds: i
              + ("" if _boundary_grows(spec, options) else "a larger boundary or `--grow-boundary`, ")
              + "or another `--seed`",
     )
+
+
+RINGS_HARD = 3
+"""Rings of corridors from which a room graph is among those the generator draws least:
+over six runs of the 80 room graphs of shared/graphs, those with at most 2 were drawn in 383
+of 384 runs, with 3 in 43 of 60, with 4 or more in 10 of 36
+(bench/experiments/results/corridor-cycles.txt)."""
+
+
+def _ring_notes(spec: Spec, unmet: tuple[tuple[str, str, float], ...]) -> list[str]:
+    """For each door of `unmet` between two corridor-like rooms that closes a ring of four
+    corridors or more (a cycle of corridors and the doors between two of them; a ring of
+    three is a triangle, which its own note names): the shortest such ring through it,
+    since it must close round the rooms hung inside it. Then, when any unmet door lies on a
+    ring and the corridors form RINGS_HARD independent rings or more, that the graph is
+    among those the generator draws least."""
+    corridors = {room.id for room in spec.rooms if room.is_corridor}
+    skeleton = nx.Graph()
+    skeleton.add_nodes_from(sorted(corridors))
+    skeleton.add_edges_from(sorted((adj.a, adj.b) for adj in spec.adjacencies
+                                   if adj.a in corridors and adj.b in corridors and adj.a != adj.b))
+    rings = skeleton.number_of_edges() - skeleton.number_of_nodes() + nx.number_connected_components(skeleton)
+    notes = []
+    on_a_ring = False
+    for x, y, metres in unmet:
+        x, y = x.removesuffix(ARM_SUFFIX), y.removesuffix(ARM_SUFFIX)
+        if metres < 0.1 or x == y or not skeleton.has_edge(x, y):
+            continue
+        skeleton.remove_edge(x, y)
+        # the shortest ring through the door that is not a triangle: a path from x to y
+        # of three doors or more, with the rooms that close triangles with the door left out
+        closing = set(skeleton[x]) & set(skeleton[y])
+        around = skeleton.subgraph(set(skeleton) - closing)
+        on_a_ring = on_a_ring or nx.has_path(skeleton, x, y)
+        ring = nx.shortest_path(around, x, y) if nx.has_path(around, x, y) else None
+        skeleton.add_edge(x, y)
+        if ring is not None:
+            notes.append(f"{x}-{y} closes a ring of corridors ({', '.join(ring)}): the ring must close round "
+                         "the rooms hung inside it")
+    if on_a_ring and rings >= RINGS_HARD:
+        notes.append(f"the corridors form {rings} independent rings (cycles of corridors joined by doors): room "
+                     f"graphs with {RINGS_HARD} or more are the ones the generator draws least")
+    return notes
 
 
 def _rooms_between_notes(spec: Spec, unmet: tuple[tuple[str, str, float], ...],

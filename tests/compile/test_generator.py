@@ -224,6 +224,30 @@ def test_unmet_doors_note_names_the_room_between_the_two_and_its_length():
     assert plain.notes == note.notes[:1]
 
 
+def test_unmet_doors_note_names_the_ring_of_corridors_a_door_closes():
+    from layoutdsl.compile.explain import unmet_doors
+
+    # four corridors in a ring, a fifth hung on it, a room on each: A-D closes the ring
+    # A, B, C, D; C-E and C-R0 close none
+    corridors = [room(c, 12.0, 2.0, rtype="C") for c in "ABCDE"]
+    spec = Spec("ring", tuple(corridors) + (room("R0", 4.0, 3.0),), Boundary(40.0, 40.0),
+                (adjacent("A", "B"), adjacent("B", "C"), adjacent("C", "D"), adjacent("D", "A"),
+                 adjacent("C", "E"), adjacent("C", "R0")))
+    note = unmet_doors(spec, (("A", "D", 2.5), ("C", "E", 1.0), ("C", "R0", 1.0)), rounds=8, moves=1000)
+    rings = [line for line in note.notes if "ring" in line]
+    assert rings == ["A-D closes a ring of corridors (A, B, C, D): the ring must close round the rooms hung "
+                     "inside it"]
+    # A, B, C, D joined pairwise: every ring through A-D is a triangle (its own note), and
+    # the corridors form three rings, which makes the graph one of the hard ones
+    spec = dataclasses.replace(spec, adjacencies=spec.adjacencies + (adjacent("A", "C"), adjacent("B", "D")))
+    note = unmet_doors(spec, (("A", "D", 2.5),), rounds=8, moves=1000)
+    (line,) = [line for line in note.notes if "ring" in line]
+    assert line.startswith("the corridors form 3 independent rings")
+    assert any("closes triangles of doors with B and C" in line for line in note.notes)
+    # a door met within 0.1 m gets no such line
+    assert not [line for line in unmet_doors(spec, (("A", "D", 0.05),), rounds=8, moves=1000).notes if "ring" in line]
+
+
 def test_no_layout_advice_leaves_out_the_boundary_when_it_already_grows_with_the_building():
     from layoutdsl.compile.explain import no_layout_in_time, unmet_doors
     from layoutdsl.solve import SolveOptions
