@@ -25,6 +25,7 @@ from pathlib import Path
 
 import networkx as nx
 
+from layoutdsl.compile.graph import corridor_skeleton, rings
 from layoutdsl.importer import import_building
 from layoutdsl.importer.convert import ImportOptions
 from layoutdsl.importer.graphs import read_graph
@@ -46,13 +47,7 @@ def runs_of(path: Path, tables: int) -> list[dict[str, float | None]]:
 
 def corridor_cycles(spec) -> int:
     """Independent cycles of the spec's corridors and the doors between two of them."""
-    corridors = {room.id for room in spec.rooms if room.is_corridor}
-    skeleton = nx.Graph()
-    skeleton.add_nodes_from(corridors)
-    skeleton.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies if adj.a in corridors and adj.b in corridors)
-    if not corridors:
-        return 0
-    return skeleton.number_of_edges() - skeleton.number_of_nodes() + nx.number_connected_components(skeleton)
+    return rings(corridor_skeleton(spec))
 
 
 def main() -> None:

@@ -20,6 +20,7 @@ from dataclasses import dataclass, replace
 
 import networkx as nx
 
+from layoutdsl.compile.graph import corridor_skeleton, rings
 from layoutdsl.syntax.ast import ARM_SUFFIX, Room, Spec
 from layoutdsl.diagnostics import Diagnostic, Severity, register
 from layoutdsl.diagnostics.source import Span
@@ -330,12 +331,8 @@ def _ring_notes(spec: Spec, unmet: tuple[tuple[str, str, float], ...]) -> list[s
     since it must close round the rooms hung inside it. Then, when any unmet door lies on a
     ring and the corridors form RINGS_HARD independent rings or more, that the graph is
     among those the generator draws least."""
-    corridors = {room.id for room in spec.rooms if room.is_corridor}
-    skeleton = nx.Graph()
-    skeleton.add_nodes_from(sorted(corridors))
-    skeleton.add_edges_from(sorted((adj.a, adj.b) for adj in spec.adjacencies
-                                   if adj.a in corridors and adj.b in corridors and adj.a != adj.b))
-    rings = skeleton.number_of_edges() - skeleton.number_of_nodes() + nx.number_connected_components(skeleton)
+    skeleton = corridor_skeleton(spec)
+    independent = rings(skeleton)
     notes = []
     on_a_ring = False
     for x, y, metres in unmet:
@@ -353,8 +350,8 @@ def _ring_notes(spec: Spec, unmet: tuple[tuple[str, str, float], ...]) -> list[s
         if ring is not None:
             notes.append(f"{x}-{y} closes a ring of corridors ({', '.join(ring)}): the ring must close round "
                          "the rooms hung inside it")
-    if on_a_ring and rings >= RINGS_HARD:
-        notes.append(f"the corridors form {rings} independent rings (cycles of corridors joined by doors): room "
+    if on_a_ring and independent >= RINGS_HARD:
+        notes.append(f"the corridors form {independent} independent rings (cycles of corridors joined by doors): room "
                      f"graphs with {RINGS_HARD} or more are the ones the generator draws least")
     return notes
 
