@@ -23,9 +23,7 @@ import argparse
 import statistics
 from pathlib import Path
 
-import networkx as nx
-
-from layoutdsl.compile.graph import corridor_skeleton, rings
+from layoutdsl.compile.graph import corridor_skeleton, rings, room_graph
 from layoutdsl.importer import import_building
 from layoutdsl.importer.convert import ImportOptions
 from layoutdsl.importer.graphs import read_graph
@@ -62,12 +60,8 @@ def main() -> None:
     for path in sorted(args.folder.glob("*.csv")):
         graph_in, _diagnostics = read_graph(path)
         spec = spec_from_graph(graph_in, kind="school", name=path.stem)
-        graph = nx.Graph()
-        graph.add_nodes_from(room.id for room in spec.rooms)
-        graph.add_edges_from((adj.a, adj.b) for adj in spec.adjacencies)
-        corridors = {room.id for room in spec.rooms if room.is_corridor}
-        cycles = graph.number_of_edges() - graph.number_of_nodes() + nx.number_connected_components(graph)
-        rows.append((corridor_cycles(spec), cycles, path.stem, len(spec.rooms), len(corridors),
+        n_corridors = sum(room.is_corridor for room in spec.rooms)
+        rows.append((corridor_cycles(spec), rings(room_graph(spec)), path.stem, len(spec.rooms), n_corridors,
                      [run.get(path.stem) for run in runs]))
     print(f"{'graph':16s} {'rooms':>5s} {'corr':>4s} {'c.cyc':>5s} {'cycles':>6s}  first layout, s (one column a run)")
     for c_cycles, cycles, name, n_rooms, n_corridors, times in sorted(rows):
