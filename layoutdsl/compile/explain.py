@@ -339,17 +339,19 @@ def _ring_notes(spec: Spec, unmet: tuple[tuple[str, str, float], ...]) -> list[s
         x, y = x.removesuffix(ARM_SUFFIX), y.removesuffix(ARM_SUFFIX)
         if metres < 0.1 or x == y or not skeleton.has_edge(x, y):
             continue
-        skeleton.remove_edge(x, y)
+        without = nx.restricted_view(skeleton, (), [(x, y)])
+        if not nx.has_path(without, x, y):
+            continue  # a bridge of the skeleton: on no ring
+        on_a_ring = True
         # the shortest ring through the door that is not a triangle: a path from x to y
         # of three doors or more, with the rooms that close triangles with the door left out
-        closing = set(skeleton[x]) & set(skeleton[y])
-        around = skeleton.subgraph(set(skeleton) - closing)
-        on_a_ring = on_a_ring or nx.has_path(skeleton, x, y)
-        ring = nx.shortest_path(around, x, y) if nx.has_path(around, x, y) else None
-        skeleton.add_edge(x, y)
-        if ring is not None:
-            notes.append(f"{x}-{y} closes a ring of corridors ({', '.join(ring)}): the ring must close round "
-                         "the rooms hung inside it")
+        closing = set(without[x]) & set(without[y])
+        try:
+            ring = nx.shortest_path(nx.restricted_view(skeleton, closing, [(x, y)]), x, y)
+        except nx.NetworkXNoPath:
+            continue
+        notes.append(f"{x}-{y} closes a ring of corridors ({', '.join(ring)}): the ring must close round "
+                     "the rooms hung inside it")
     if on_a_ring and independent >= RINGS_HARD:
         notes.append(f"the corridors form {independent} independent rings (cycles of corridors joined by doors): room "
                      f"graphs with {RINGS_HARD} or more are the ones the generator draws least")
