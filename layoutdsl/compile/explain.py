@@ -111,6 +111,49 @@ E908 = register(
     "C2 C3 0.9 i\n# four corridors joined pairwise; none has an arm",
 )
 
+E912 = register(
+    "E912",
+    Severity.ERROR,
+    "rectangles-cannot-keep-it-open",
+    "Reports a room graph that no drawing with its room shapes realises, found from the graph "
+    "alone before any search: three rooms joined pairwise (all rectangles) that would have to "
+    "enclose other rooms, or rooms that must open to the outside (`onB`) that the doors round "
+    "them shut in. Names the fewest such threes and rooms that conflict, at the first "
+    "adjacency line among them.",
+    "Three rectangles joined pairwise share walls only around a point, so they enclose "
+    "nothing; and every room that must open outside touches the one outside. When the room "
+    "graph has no planar drawing that keeps both (`layoutdsl.check.rectangles` tests it: every "
+    "real plan of the development corpus passes), no sizes help, and the search would run to "
+    "its limit. Compile first gives a corridor-like room of the threes an L when that is "
+    "enough, and says so on the terminal; E912 is for the graphs no such L saves. The way out "
+    "is an `arms` line for another room of the threes, a door fewer, or `onB` dropped from one "
+    "of the rooms named.",
+    "adjacencies\nC0 C1 0.9 i\nC1 C2 0.9 i\nC2 C3 0.9 i\nC3 C0 0.9 i\nC0 E0 0.9 e\nC2 E0 0.9 e\n"
+    "C1 E1 0.9 e\nC3 E1 0.9 e\n# E0 and E1 onB: the ring of corridors and the two entrances\n"
+    "# that cross it leave one of them inside in every drawing",
+)
+
+I912 = register(
+    "I912",
+    Severity.INFO,
+    "corridor-bent-not-placed",
+    "Accompanies E902 when compile gave a corridor-like room an L so that the room graph could "
+    "be drawn at all (three rooms joined pairwise, all rectangles, would otherwise have had to "
+    "enclose rooms or shut an entrance in), and the generator still found no layout: names "
+    "the threes, the rooms that must open outside and the L-rooms among the threes.",
+    "With that L the graph has drawings, but few: the L must wrap the rooms the threes would "
+    "have enclosed, and the generator's work limits ran out before it reached one. Another "
+    "`--seed` draws other arrangements; an `arms` line for another room of the threes gives the "
+    "search other shapes; a door fewer among the threes, or `onB` dropped from a room named, "
+    "lets rectangles draw it. Where no L is enough, compile says so before any search (E912).",
+    "# compile: C3 drawn as L-shaped rooms (rooms C0 C1 C3 and C1 C2 C3 are joined pairwise and\n"
+    "#   E0, E2 must open to the outside: rectangles alone cannot draw them)\n"
+    "# error[E902]: no layout found within the time limit\n"
+    "# info[I912]: rooms C0 C1 C3 and C1 C2 C3 are joined pairwise and E0, E2 must open to the "
+    "outside: with C3 L-shaped they may be drawn, and the generator's arrangements did not reach it",
+)
+
+
 LONG_BOUNDARY = 3.0
 """A boundary at least this many times as long as it is wide is called long in W906's help.
 Measured (bench/results/outline.txt): the two real plans of 3.7-3.8:1 differ from their

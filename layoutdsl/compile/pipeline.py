@@ -101,10 +101,11 @@ def compile_from_start(
         formulation = THESIS_AS_WRITTEN
         rects_start = None
     elif rects_start is None:
+        given = spec
         spec, made_l = structure.with_l_rooms(spec)
         if made_l and not options.quiet:
-            print(f"compile: {', '.join(made_l)} drawn as L-shaped rooms (four rooms joined pairwise "
-                  "cannot all be rectangles)", file=sys.stderr)
+            print(f"compile: {', '.join(made_l)} drawn as L-shaped rooms ({structure.why_l_rooms(given, made_l)})",
+                  file=sys.stderr)
         undrawable = structure.undrawable(spec)
         if undrawable:
             timings["total"] = time.monotonic() - began
@@ -132,8 +133,8 @@ def compile_from_start(
     if spec.arms:
         result = _compile_l_rooms(spec, options, rects_start, progress, timings, began, deadline, generated)
         if result.layout is None and generated is not None:
-            # four rooms joined pairwise that an L makes drawable, yet the generator did not
-            # draw: say which rooms make the graph hard to draw, and why
+            # rooms that an L makes drawable (four joined pairwise, or threes that rectangles
+            # could not keep open), yet the generator did not draw: say which, and why
             result = replace(result, diagnostics=result.diagnostics + structure.not_placed(spec))
         return _with_closest_arrangement(result, spec, options, generated)
     # a verified start polished with nothing searched after: the model needs only the

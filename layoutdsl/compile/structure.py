@@ -13,9 +13,15 @@ A K4 with a corridor-like room (type C: corridors, halls, lobbies) is drawn inst
 room gets an arm (`with_l_rooms`), an L that wraps two of the others (shapes.py): the
 longest such room, since its legs must reach round the two it wraps.
 
-Separating triangles (three rooms joined pairwise with rooms both inside and outside the
-triangle) are drawable with rectangles when the triangle's rooms may meet around a point;
-they are left to the generator.
+- three rooms joined pairwise, all rectangles, that would have to enclose other rooms, and
+  rooms that must open to the outside (onB) that the doors round them shut in (E912):
+  three rectangles meet pairwise only around a point, so such a triangle is a face of every
+  drawing, and when no planar embedding of the room graph keeps every one a face with the
+  onB rooms round one outside, no sizes draw it (layoutdsl.check.rectangles, a test on the
+  graph alone). Compile first gives a corridor-like room of those triangles an L when that
+  is enough (`with_l_rooms`, the longest first): on the 80 synthetic school graphs two need
+  one (cml_new_256 and cml_synth_121, whose unmet door had been put down to rings of
+  corridors), and no real plan does.
 
 The generator also turns corridors: of each door between two corridor-like rooms that its
 best arrangement still leaves unmet, one gets an arm, the same L (shapes.py), for the rounds
@@ -28,9 +34,11 @@ from itertools import combinations
 
 import networkx as nx
 
-from layoutdsl.compile.explain import E908, I911
+from layoutdsl.check.rectangles import Enclosure, enclosure
+from layoutdsl.compile.explain import E908, E912, I911, I912
 from layoutdsl.compile.graph import room_graph
-from layoutdsl.compile.shapes import with_corridor_arms
+from layoutdsl.compile.shapes import with_arms, with_corridor_arms
+from layoutdsl.layout.geometry import RoomSizes
 from layoutdsl.diagnostics import Diagnostic, Severity
 from layoutdsl.diagnostics.source import Span
 from layoutdsl.syntax.ast import Spec
@@ -44,16 +52,72 @@ def with_l_rooms(spec: Spec) -> tuple[Spec, list[str]]:
     longest target side first (then the most doors, then spec order). The L has to wrap two
     of the others: a long corridor's legs reach round them where a hall's do not (a hall
     with more doors than three corridors, made the L, found no layout for two seeds of
-    four; the longest corridor, four of four)."""
+    four; the longest corridor, four of four). Then, when the rectangles left still cannot
+    be drawn with the onB rooms outside (`enclosed`), the first corridor-like room in the
+    same order whose L lets them be (`bent_for`)."""
     armed = {arm.room for arm in spec.arms}
-    return with_corridor_arms(spec, rectangle_k4s(room_graph(spec), armed), longest=True)
+    spec, made = with_corridor_arms(spec, rectangle_k4s(room_graph(spec), armed), longest=True)
+    bent = bent_for(spec)
+    if bent is not None:
+        spec, made = with_arms(spec, [bent]), made + [bent]
+    return spec, made
+
+
+def why_l_rooms(spec: Spec, made: list[str]) -> str:
+    """Why `with_l_rooms` made the rooms `made` of `spec` (the spec it was given) L-shaped,
+    for the terminal."""
+    armed = {arm.room for arm in spec.arms}
+    in_fours = {room for four in rectangle_k4s(room_graph(spec), armed) for room in four}
+    reasons = []
+    if in_fours & set(made):
+        reasons.append("four rooms joined pairwise cannot all be rectangles")
+    k4_made = [room for room in made if room in in_fours]
+    reason = enclosed(with_arms(spec, k4_made)) if set(made) - in_fours else None
+    if reason is not None:
+        reasons.append(f"{enclosure_text(reason)}: rectangles alone cannot draw them")
+    return "; ".join(reasons)
+
+
+def enclosed(spec: Spec, l_rooms: set[str] | None = None) -> Enclosure | None:
+    """Why the spec's rectangles (every room but `l_rooms`, by default those with an arm)
+    cannot be drawn with its onB rooms open to the outside; None when
+    layoutdsl.check.rectangles finds no reason."""
+    if l_rooms is None:
+        l_rooms = {arm.room for arm in spec.arms}
+    rectangles = [room.id for room in spec.rooms if room.id not in l_rooms]
+    outside = [room.id for room in spec.rooms if room.on_boundary]
+    return enclosure(room_graph(spec), rectangles, outside)
+
+
+def bent_for(spec: Spec) -> str | None:
+    """The corridor-like room (not L-shaped yet) whose L lets the spec be drawn (`enclosed`
+    finds no reason then), the longest target side first, then the most doors, then spec
+    order; None when the spec needs none or no single L is enough."""
+    reason = enclosed(spec)
+    if reason is None:
+        return None
+    graph = room_graph(spec)
+    armed = {arm.room for arm in spec.arms}
+    order = {room.id: index for index, room in enumerate(spec.rooms)}
+    in_triangles = {room for triangle in reason.triangles for room in triangle}
+    candidates = sorted((room for room in spec.rooms if room.rtype == "C" and room.id not in armed
+                         and room.id in in_triangles),
+                        key=lambda room: (-RoomSizes.of(room).target_long, -graph.degree(room.id), order[room.id]))
+    for room in candidates:
+        if enclosed(with_arms(spec, [room.id])) is None:
+            return room.id
+    return None
 
 
 def undrawable(spec: Spec) -> list[Diagnostic]:
     """An E908 diagnostic for every four rooms joined pairwise that must all be rectangles;
     empty when the room graph may be drawable."""
     l_rooms = {arm.room for arm in spec.arms}
-    return [_k4_diagnostic(spec, group) for group in rectangle_k4s(room_graph(spec), l_rooms)]
+    k4s = [_k4_diagnostic(spec, group) for group in rectangle_k4s(room_graph(spec), l_rooms)]
+    if k4s:
+        return k4s
+    reason = enclosed(spec)
+    return [_enclosed_diagnostic(spec, reason)] if reason is not None else []
 
 
 def rectangle_k4s(graph: nx.Graph, l_rooms: set[str]) -> list[tuple[str, ...]]:
@@ -75,7 +139,64 @@ def not_placed(spec: Spec) -> list[Diagnostic]:
     generator found no layout for such a graph (E908 is for four that must be rectangles)."""
     l_rooms = {arm.room for arm in spec.arms}
     fours = [four for four in rectangle_k4s(room_graph(spec), set()) if l_rooms & set(four)]
-    return [_not_placed_diagnostic(spec, four, l_rooms) for four in fours]
+    notes = [_not_placed_diagnostic(spec, four, l_rooms) for four in fours]
+    # the Ls outside those fours, given by compile (`bent_for`, or a corridor the generator
+    # turned) or by the spec: where rectangles alone could not draw the graph, the reason
+    in_fours = {room for four in fours for room in four}
+    reason = enclosed(spec, l_rooms & in_fours)
+    if reason is not None and reason.triangles:
+        bent = [room.id for room in spec.rooms if room.id in l_rooms - in_fours
+                and any(room.id in triangle for triangle in reason.triangles)]
+        if bent:
+            notes.append(_bent_not_placed_diagnostic(spec, reason, bent))
+    return notes
+
+
+def enclosure_text(reason: Enclosure) -> str:
+    """'rooms C0 C1 C3 and C1 C2 C3 are joined pairwise and E0, E2 must open to the outside'."""
+    parts = []
+    if reason.triangles:
+        threes = " and ".join(" ".join(triangle) for triangle in reason.triangles)
+        parts.append(f"rooms {threes} are joined pairwise")
+    if reason.outside:
+        parts.append(f"{', '.join(reason.outside)} must open to the outside")
+    return " and ".join(parts)
+
+
+def _enclosed_rooms(reason: Enclosure) -> list[str]:
+    seen: dict[str, None] = {}
+    for triangle in reason.triangles:
+        seen.update(dict.fromkeys(triangle))
+    seen.update(dict.fromkeys(reason.outside))
+    return list(seen)
+
+
+def _enclosed_diagnostic(spec: Spec, reason: Enclosure) -> Diagnostic:
+    if reason.triangles:
+        why = ("three rectangles joined pairwise meet only around a point, and no drawing keeps "
+               "each three so" + (" with those rooms outside" if reason.outside else ""))
+        corridors = sorted({room for triangle in reason.triangles for room in triangle})
+        help_text = (f"give one of {', '.join(corridors)} an L (an `arms` line), remove a door among them"
+                     + (f", or drop `onB` from one of {', '.join(reason.outside)}" if reason.outside else ""))
+    else:
+        why = "no arrangement of the doors leaves them all on the outside (a cycle of doors shuts one in)"
+        help_text = (f"drop `onB` from one of {', '.join(reason.outside)}, or remove a door that runs "
+                     "between them")
+    return Diagnostic(
+        code=E912,
+        message=f"{enclosure_text(reason)}: {why}",
+        filename=spec.path, span=_adjacency_span(spec, _enclosed_rooms(reason)),
+        label="no drawing with these shapes", help=help_text)
+
+
+def _bent_not_placed_diagnostic(spec: Spec, reason: Enclosure, bent: list[str]) -> Diagnostic:
+    return Diagnostic(
+        code=I912,
+        message=f"{enclosure_text(reason)}: with {' and '.join(bent)} L-shaped they may be drawn, and the "
+                "generator's arrangements did not reach it",
+        filename=spec.path, span=_adjacency_span(spec, _enclosed_rooms(reason)), severity=Severity.INFO,
+        label="rectangles alone cannot draw these",
+        help=f"another `--seed`; an `arms` line for another room of the threes; or a door fewer among them")
 
 
 def _k4_diagnostic(spec: Spec, four: tuple[str, ...]) -> Diagnostic:

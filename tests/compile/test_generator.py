@@ -14,7 +14,7 @@ from layoutdsl.compile import compile_spec
 from layoutdsl.compile.generator import generate
 from layoutdsl.compile.initial import drawn_sides, initial_geometry
 from layoutdsl.compile.representation import Rooms
-from layoutdsl.compile.structure import with_l_rooms
+from layoutdsl.compile.structure import not_placed, with_l_rooms
 from layoutdsl.layout.geometry import layout_from_rects
 from layoutdsl.layout.verify import verify
 from layoutdsl.solve import SolveOptions
@@ -151,6 +151,58 @@ def test_of_four_rooms_joined_pairwise_the_longest_corridor_wraps_the_others():
     assert result.layout is not None, result.diagnostics
     assert [placed.id for placed in result.layout.rooms if placed.is_l_shaped] == ["C0"]
     assert verify(l_spec, result.layout) == []
+
+
+def _two_triangles_on_a_wall() -> Spec:
+    # C1 and C3 share a wall with C0 at one end and C2 at the other (two triangles of
+    # corridors, each meeting at a point), C5 joins C0 to C2 round one of them, and C1 and
+    # C3 each have an entrance: rectangles alone shut one entrance in (cml_synth_121's core)
+    rooms = [room("C0", 16.0, 2.5, rtype="C", var=0.4), room("C1", 8.0, 6.0, rtype="C", var=0.4),
+             room("C2", 14.0, 2.5, rtype="C", var=0.4), room("C3", 24.0, 2.5, rtype="C", var=0.4),
+             room("C5", 14.0, 2.5, rtype="C", var=0.4),
+             room("E0", 3.0, 3.0, rtype="E", on_boundary=True), room("E1", 3.0, 3.0, rtype="E", on_boundary=True)]
+    pairs = [("C0", "C1"), ("C1", "C2"), ("C1", "C3"), ("C0", "C3"), ("C2", "C3"), ("C0", "C5"), ("C2", "C5"),
+             ("C1", "E0"), ("C3", "E1")]
+    return Spec("bent", tuple(rooms), Boundary(40.0, 30.0), tuple(adjacent(a, b, kind="i") for a, b in pairs))
+
+
+def test_a_corridor_rectangles_cannot_keep_open_is_drawn_as_an_l_with_its_entrances_outside():
+    spec = _two_triangles_on_a_wall()
+    l_spec, made = with_l_rooms(spec)
+    assert made == ["C3"]  # of the four rooms of the two triangles, the longest corridor
+    result = compile_spec(spec, SolveOptions(time_limit=30, seed=0, quiet=True, search=False))
+    assert result.layout is not None, result.diagnostics
+    assert [placed.id for placed in result.layout.rooms if placed.is_l_shaped] == ["C3"]
+    assert verify(l_spec, result.layout) == []
+    # independent check: both entrances reach the rooms' bounding box
+    boxes = [(part.x, part.y, part.w, part.h) for part in result.layout.parts()]
+    left, bottom = min(x for x, _y, _w, _h in boxes), min(y for _x, y, _w, _h in boxes)
+    right, top = max(x + w for x, _y, w, _h in boxes), max(y + h for _x, y, _w, h in boxes)
+    for entrance in ("E0", "E1"):
+        placed = result.layout.room(entrance)
+        assert min(placed.x - left, placed.y - bottom, right - placed.x2, top - placed.y2) < 1e-5, entrance
+
+
+def test_a_bent_corridor_the_generator_did_not_draw_is_named_with_its_reason():
+    l_spec, _made = with_l_rooms(_two_triangles_on_a_wall())
+    notes = not_placed(l_spec)
+    assert [d.code for d in notes] == ["I912"]
+    assert notes[0].message.startswith("rooms C0 C1 C3 and C1 C2 C3 are joined pairwise and E0, E1 must open "
+                                       "to the outside: with C3 L-shaped")
+
+
+def test_entrances_the_doors_shut_in_are_reported_before_any_search():
+    corridors = [room(f"C{i}", 10.0, 2.5, rtype="C", var=0.4) for i in range(4)]
+    entrances = [room(f"E{i}", 3.0, 3.0, rtype="E", on_boundary=True) for i in range(2)]
+    pairs = [("C0", "C1"), ("C1", "C2"), ("C2", "C3"), ("C3", "C0"), ("C0", "E0"), ("C2", "E0"),
+             ("C1", "E1"), ("C3", "E1")]
+    spec = Spec("crossed", tuple(corridors + entrances), Boundary(40.0, 30.0),
+                tuple(adjacent(a, b) for a, b in pairs))
+    result = compile_spec(spec, SolveOptions(time_limit=30, quiet=True))
+    assert result.layout is None
+    assert [d.code for d in result.diagnostics] == ["E912"]
+    assert "E0, E1 must open to the outside" in result.diagnostics[0].message
+    assert result.timings["total"] < 5.0  # before the generator's search, not after it
 
 
 def test_a_too_tight_boundary_grows_when_allowed_and_says_so():

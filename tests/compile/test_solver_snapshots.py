@@ -79,5 +79,5 @@ def test_solver_diagnostic_snapshot(path: Path, tmp_path: Path, golden, monkeypa
 def test_every_solver_code_has_a_snapshot():
     codes = {c for c in explain.__dict__.values() if isinstance(c, str) and c[1:2] == "9" and len(c) == 4}
     shown = {p.stem.split("-")[0] for p in SPECS}
-    assert codes == {"E901", "E902", "E903", "E904", "E905", "W906", "E908", "I909", "I910", "I911"}
+    assert codes == {"E901", "E902", "E903", "E904", "E905", "W906", "E908", "I909", "I910", "I911", "E912", "I912"}
     assert codes <= shown
