@@ -21,8 +21,10 @@ The test asks networkx whether a graph built for that is planar (Boyer-Myrvold, 
 Nonplanar means that no drawing with these shapes exists, whatever the sizes. The converse
 need not hold (sizes, and rooms with a single door, which may land in a hub's face, are not
 looked at): the test never refuses a drawable graph. All 24 real plans of the development
-corpus pass it; of the 80 synthetic school graphs two fail it with rectangles only (each drawn
-once one of its corridors turns a corner) and two more until their K4's corridor is an L.
+corpus pass it, with every room a rectangle; of the 80 synthetic school graphs two fail it
+with rectangles only and pass once one corridor of their triangles is an L (cml_synth_121,
+cml_new_256), and two more fail it until their K4's corridor is an L (cml_new_164,
+cml_new_70).
 
 Users: `compile.structure` (a corridor that must turn a corner for the building to be drawn at
 all gets its L before the search; E912 when none can) and the sampler (a graph compile would
