@@ -111,7 +111,8 @@ def bent_for(spec: Spec) -> str | None:
 
 def undrawable(spec: Spec) -> list[Diagnostic]:
     """An E908 diagnostic for every four rooms joined pairwise that must all be rectangles;
-    empty when the room graph may be drawable."""
+    else an E912 when the rectangles cannot be drawn with the onB rooms outside (`enclosed`,
+    after `with_l_rooms` gave what Ls it could); empty when the room graph may be drawable."""
     l_rooms = {arm.room for arm in spec.arms}
     k4s = [_k4_diagnostic(spec, group) for group in rectangle_k4s(room_graph(spec), l_rooms)]
     if k4s:
