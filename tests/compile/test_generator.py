@@ -14,7 +14,7 @@ from layoutdsl.compile import compile_spec
 from layoutdsl.compile.generator import generate
 from layoutdsl.compile.initial import drawn_sides, initial_geometry
 from layoutdsl.compile.representation import Rooms
-from layoutdsl.compile.structure import not_placed, with_l_rooms
+from layoutdsl.compile.structure import not_placed, why_l_rooms, with_l_rooms
 from layoutdsl.layout.geometry import layout_from_rects
 from layoutdsl.layout.verify import verify
 from layoutdsl.solve import SolveOptions
@@ -181,6 +181,18 @@ def test_a_corridor_rectangles_cannot_keep_open_is_drawn_as_an_l_with_its_entran
     for entrance in ("E0", "E1"):
         placed = result.layout.room(entrance)
         assert min(placed.x - left, placed.y - bottom, right - placed.x2, top - placed.y2) < 1e-5, entrance
+
+
+def test_the_terminal_says_why_each_room_became_an_l():
+    spec = _two_triangles_on_a_wall()
+    _l_spec, made = with_l_rooms(spec)
+    assert why_l_rooms(spec, made) == ("rooms C0 C1 C3 and C1 C2 C3 are joined pairwise and E0, E1 must open to "
+                                      "the outside: rectangles alone cannot draw them")
+    corridors = [room(f"C{i}", 8.0 + i, 2.0, rtype="C", var=0.4) for i in range(4)]
+    k4 = Spec("k4", tuple(corridors), Boundary(30.0, 30.0),
+              tuple(adjacent(f"C{i}", f"C{j}", kind="i") for i in range(4) for j in range(i + 1, 4)))
+    _l_spec, made = with_l_rooms(k4)
+    assert made == ["C3"] and why_l_rooms(k4, made) == "four rooms joined pairwise cannot all be rectangles"
 
 
 def test_a_bent_corridor_the_generator_did_not_draw_is_named_with_its_reason():
