@@ -14,8 +14,8 @@ The test asks networkx whether a graph built for that is planar (Boyer-Myrvold, 
 
 - each door of such a triangle gets a point in the middle of its wall (one point for the two
   triangles on either side of a wall), and each triangle a hub joined to its three rooms and
-  its three wall points. Each face of the hub then touches one room of the three and no other
-  room: a room with doors to two of them cannot lie inside the triangle.
+  its three wall points. Each face round the hub then touches only one of the three rooms: a
+  room with doors to two of them cannot lie inside the triangle.
 - one node for the outside, joined to every room that must open to it.
 
 Nonplanar means that no drawing with these shapes exists, whatever the sizes. The converse
@@ -27,8 +27,8 @@ cml_new_256), and two more fail it until their K4's corridor is an L (cml_new_16
 cml_new_70).
 
 Users: `compile.structure` (a corridor that must turn a corner for the building to be drawn at
-all gets its L before the search; E912 when none can) and the sampler (a graph compile would
-refuse is drawn again).
+all gets its L before the search; E912 when none can) and the sampler (a graph that fails it
+with every room a rectangle, as no real plan does, is drawn again).
 """
 
 from __future__ import annotations
