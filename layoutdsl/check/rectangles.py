@@ -53,6 +53,10 @@ class Enclosure:
     """Rooms joined pairwise in threes, all rectangles, each three meeting only at a point."""
     outside: tuple[str, ...]
     """Rooms that must open to the outside (onB); empty when the triangles alone conflict."""
+    rooms: tuple[str, ...] = ()
+    """The rooms whose doors close the trap, in the graph's node order: the branch nodes of
+    a Kuratowski subgraph of the test graph (a hub or a wall point read as the rooms it
+    stands for, the outside left out), as E215 names a non-planar graph's."""
 
 
 def rectangle_triangles(graph: nx.Graph, rectangles: Iterable[str]) -> list[Triangle]:
@@ -91,10 +95,29 @@ def enclosure(graph: nx.Graph, rectangles: Iterable[str], outside: Iterable[str]
         fewer_rooms = [kept for kept in open_rooms if kept != room]
         if not _planar(graph, triangles, fewer_rooms):
             open_rooms = fewer_rooms
-    return Enclosure(tuple(triangles), tuple(open_rooms))
+    return Enclosure(tuple(triangles), tuple(open_rooms), _trap(graph, triangles, open_rooms))
+
+
+def _trap(graph: nx.Graph, triangles: list[Triangle], outside: list[str]) -> tuple[str, ...]:
+    _planar_, certificate = nx.check_planarity(_test_graph(graph, triangles, outside), counterexample=True)
+    rooms: set = set()
+    for node in certificate.nodes:
+        if certificate.degree(node) < 3 or node == OUTSIDE:
+            continue
+        if isinstance(node, tuple) and node[0] == "hub":
+            rooms.update(triangles[node[1]])
+        elif isinstance(node, tuple) and node[0] == "wall":
+            rooms.update(node[1:])
+        else:
+            rooms.add(node)
+    return tuple(room for room in graph.nodes if room in rooms)
 
 
 def _planar(graph: nx.Graph, triangles: list[Triangle], outside: list[str]) -> bool:
+    return nx.check_planarity(_test_graph(graph, triangles, outside))[0]
+
+
+def _test_graph(graph: nx.Graph, triangles: list[Triangle], outside: list[str]) -> nx.Graph:
     test = nx.Graph()
     test.add_nodes_from(graph.nodes)
     walls = {frozenset((t[i], t[(i + 1) % 3])) for t in triangles for i in range(3)}
@@ -112,7 +135,7 @@ def _planar(graph: nx.Graph, triangles: list[Triangle], outside: list[str]) -> b
             test.add_edge(hub, _wall_point(triangle[i], triangle[(i + 1) % 3]))
     for room in outside:
         test.add_edge(OUTSIDE, room)
-    return nx.check_planarity(test)[0]
+    return test
 
 
 def _wall_point(a: str, b: str) -> tuple[str, str, str]:

@@ -119,7 +119,9 @@ E912 = register(
     "alone before any search: three rooms joined pairwise (all rectangles) that would have to "
     "enclose other rooms, or rooms that must open to the outside (`onB`) that the doors round "
     "them shut in. Names the fewest such threes and rooms that conflict, at the first "
-    "adjacency line among them.",
+    "adjacency line among them, and in a note the rooms whose doors decide it (the branch "
+    "rooms of a Kuratowski subgraph of the test's graph, as E215 names them for a non-planar "
+    "one).",
     "Three rectangles joined pairwise share walls only around a point, so they enclose "
     "nothing; and every room that must open outside touches the one outside. When the room "
     "graph has no planar drawing that keeps both (`layoutdsl.check.rectangles` tests it: every "

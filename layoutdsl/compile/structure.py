@@ -181,13 +181,25 @@ def _enclosed_diagnostic(spec: Spec, reason: Enclosure) -> Diagnostic:
                      + (f", or drop `onB` from one of {', '.join(reason.outside)}" if reason.outside else ""))
     else:
         why = "no arrangement of the doors leaves them all on the outside (a cycle of doors shuts one in)"
-        help_text = (f"drop `onB` from one of {', '.join(reason.outside)}, or remove a door that runs "
-                     "between them")
+        help_text = (f"drop `onB` from one of {', '.join(reason.outside)}, or remove a door among the rooms "
+                     "in the note")
     return Diagnostic(
         code=E912,
         message=f"{enclosure_text(reason)}: {why}",
         filename=spec.path, span=_adjacency_span(spec, _enclosed_rooms(reason)),
-        label="no drawing with these shapes", help=help_text)
+        label="no drawing with these shapes", help=help_text, notes=_trap_note(reason))
+
+
+def _trap_note(reason: Enclosure) -> tuple[str, ...]:
+    """Which rooms' doors decide it (layoutdsl.check.rectangles names them as E215 names a
+    non-planar graph's)."""
+    if not reason.rooms:
+        return ()
+    enclose = "a triangle of rectangles would have to enclose rooms"
+    shut_in = f"one of {', '.join(reason.outside)} is shut in"
+    shut = (f"{enclose} or {shut_in}" if reason.triangles and reason.outside
+            else enclose if reason.triangles else shut_in)
+    return (f"the doors among {', '.join(reason.rooms)} decide it: in every planar drawing of them {shut}",)
 
 
 def _bent_not_placed_diagnostic(spec: Spec, reason: Enclosure, bent: list[str]) -> Diagnostic:
@@ -196,8 +208,8 @@ def _bent_not_placed_diagnostic(spec: Spec, reason: Enclosure, bent: list[str]) 
         message=f"{enclosure_text(reason)}: with {' and '.join(bent)} L-shaped they may be drawn, and the "
                 "generator's arrangements did not reach it",
         filename=spec.path, span=_adjacency_span(spec, _enclosed_rooms(reason)), severity=Severity.INFO,
-        label="rectangles alone cannot draw these",
-        help=f"another `--seed`; an `arms` line for another room of the threes; or a door fewer among them")
+        label="rectangles alone cannot draw these", notes=_trap_note(reason),
+        help="another `--seed`; an `arms` line for another room of the threes; or a door fewer among them")
 
 
 def _k4_diagnostic(spec: Spec, four: tuple[str, ...]) -> Diagnostic:

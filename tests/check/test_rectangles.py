@@ -44,7 +44,9 @@ round one of them, so C1 or C3 is shut in, and each has an entrance."""
 def test_a_ring_crossed_by_two_entrances_shuts_one_in():
     rooms = list(RING_WITH_CROSSING_ENTRANCES)
     assert not drawable(RING_WITH_CROSSING_ENTRANCES, rooms, ["E0", "E1"])
-    assert enclosure(RING_WITH_CROSSING_ENTRANCES, rooms, ["E0", "E1"]) == Enclosure((), ("E0", "E1"))
+    reason = enclosure(RING_WITH_CROSSING_ENTRANCES, rooms, ["E0", "E1"])
+    # the rooms named are the branch rooms of the trap: the ring and both entrances
+    assert reason == Enclosure((), ("E0", "E1"), ("C0", "C1", "C2", "C3", "E0", "E1"))
     # either entrance alone can face outwards, and no shape changes that
     assert drawable(RING_WITH_CROSSING_ENTRANCES, rooms, ["E0"])
     assert not drawable(RING_WITH_CROSSING_ENTRANCES, [], ["E0", "E1"])
@@ -56,7 +58,7 @@ def test_three_rectangles_joined_pairwise_enclose_nothing():
     graph = _graph([("A", "B"), ("B", "C"), ("C", "A")] + [(x, t) for x in "XY" for t in "ABC"])
     assert rectangle_triangles(graph, "ABC") == [("A", "B", "C")]
     assert not drawable(graph, list(graph), [])
-    assert enclosure(graph, list(graph), []) == Enclosure((("A", "B", "C"),), ())
+    assert enclosure(graph, list(graph), []) == Enclosure((("A", "B", "C"),), (), ("A", "B", "C", "X", "Y"))
     # an L (A not a rectangle) can wrap round one of them
     assert drawable(graph, ["B", "C", "X", "Y"], [])
     # one room joined to all three sits outside the triangle: drawable
@@ -67,7 +69,8 @@ def test_three_rectangles_joined_pairwise_enclose_nothing():
 def test_two_triangles_on_a_wall_and_their_entrances():
     graph = TWO_TRIANGLES_ON_A_WALL
     reason = enclosure(graph, list(graph), ["E0", "E1"])
-    assert reason == Enclosure((("C0", "C1", "C3"), ("C1", "C2", "C3")), ("E0", "E1"))
+    assert reason.triangles == (("C0", "C1", "C3"), ("C1", "C2", "C3")) and reason.outside == ("E0", "E1")
+    assert set(reason.rooms) <= {"C0", "C1", "C2", "C3", "C5", "E0", "E1"}
     # any one of the four rooms of the two triangles as an L is enough
     for bent in ("C0", "C1", "C2", "C3"):
         assert drawable(graph, [room for room in graph if room != bent], ["E0", "E1"]), bent
