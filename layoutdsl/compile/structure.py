@@ -34,7 +34,7 @@ from itertools import combinations
 
 import networkx as nx
 
-from layoutdsl.check.rectangles import Enclosure, enclosure
+from layoutdsl.check.rectangles import Enclosure, drawable, enclosure, rectangle_triangles
 from layoutdsl.compile.explain import E908, E912, I911, I912
 from layoutdsl.compile.graph import room_graph
 from layoutdsl.compile.shapes import with_arms, with_corridor_arms
@@ -82,31 +82,37 @@ def enclosed(spec: Spec, l_rooms: set[str] | None = None) -> Enclosure | None:
     """Why the spec's rectangles (every room but `l_rooms`, by default those with an arm)
     cannot be drawn with its onB rooms open to the outside; None when
     layoutdsl.check.rectangles finds no reason."""
-    if l_rooms is None:
-        l_rooms = {arm.room for arm in spec.arms}
-    rectangles = [room.id for room in spec.rooms if room.id not in l_rooms]
-    outside = [room.id for room in spec.rooms if room.on_boundary]
-    return enclosure(room_graph(spec), rectangles, outside)
+    return enclosure(*_rectangle_test(spec, l_rooms))
 
 
 def bent_for(spec: Spec) -> str | None:
     """The corridor-like room (not L-shaped yet) whose L lets the spec be drawn (`enclosed`
     finds no reason then), the longest target side first, then the most doors, then spec
-    order; None when the spec needs none or no single L is enough."""
-    reason = enclosed(spec)
-    if reason is None:
+    order; None when the spec needs none or no single L is enough. Only a room of a triangle
+    of rectangles can be one (an L elsewhere leaves every conflicting triangle as it was),
+    and each is tried with the plain test: the conflict itself is named once, by E912."""
+    graph, rectangles, outside = _rectangle_test(spec)
+    if drawable(graph, rectangles, outside):
         return None
-    graph = room_graph(spec)
     armed = {arm.room for arm in spec.arms}
     order = {room.id: index for index, room in enumerate(spec.rooms)}
-    in_triangles = {room for triangle in reason.triangles for room in triangle}
+    in_triangles = {room for triangle in rectangle_triangles(graph, rectangles) for room in triangle}
     candidates = sorted((room for room in spec.rooms if room.rtype == "C" and room.id not in armed
                          and room.id in in_triangles),
                         key=lambda room: (-RoomSizes.of(room).target_long, -graph.degree(room.id), order[room.id]))
     for room in candidates:
-        if enclosed(with_arms(spec, [room.id])) is None:
+        if drawable(graph, [r for r in rectangles if r != room.id], outside):
             return room.id
     return None
+
+
+def _rectangle_test(spec: Spec, l_rooms: set[str] | None = None) -> tuple[nx.Graph, list[str], list[str]]:
+    """(room graph, its rectangles: every room but `l_rooms`, by default those with an arm,
+    its onB rooms): what layoutdsl.check.rectangles tests."""
+    if l_rooms is None:
+        l_rooms = {arm.room for arm in spec.arms}
+    rectangles = [room.id for room in spec.rooms if room.id not in l_rooms]
+    return room_graph(spec), rectangles, [room.id for room in spec.rooms if room.on_boundary]
 
 
 def undrawable(spec: Spec) -> list[Diagnostic]:
