@@ -337,9 +337,11 @@ def variant_failure(args, options, seed: int | None) -> str:
     if args.variants_from == "hints":
         return (f"seed {seed}: neither the generator starting from the hints nor the solve found a "
                 f"verified layout within the time limit ({limit}); try a larger --time-limit")
-    return (f"no seed tried gave a new arrangement: for each, the generator found no layout, or "
-            f"none that verified, within the time limit ({limit}); try a larger --time-limit, "
-            "another --seed, or --variants-from hints")
+    # a seed's try ends at the generator's rounds (work, the same on every machine) or at
+    # the time limit, whichever comes first: the result does not say which, so both are named
+    return (f"no seed tried gave a new arrangement: for each, the generator found no layout within "
+            f"its work limits or the time limit ({limit}), or none that verified; try another "
+            "--seed, --variants-from hints, or a larger --time-limit")
 
 
 def _run_variants(spec, args, options, outdir: Path, formats, sources, out: Output) -> int:

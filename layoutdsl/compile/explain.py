@@ -43,11 +43,13 @@ E902 = register(
     "E902",
     Severity.ERROR,
     "no-layout-in-time",
-    "Reports that the solver stopped at its time limit (or node or solution limit) before "
-    "it found any layout.",
-    "The spec may well be feasible, but no layout was found in time, so nothing was written. "
-    "Larger specs, tight boundaries, narrow size ranges and cycles of adjacent rooms make the "
-    "first layout hard to find.",
+    "Reports that compile found no layout before it stopped: the generator's work limits ran "
+    "out (its rounds of arrangements, the same on every machine), or the time limit (or a "
+    "node or solution limit) stopped the search. The message says which.",
+    "The spec may well be feasible, but no layout was found, so nothing was written. Larger "
+    "specs, tight boundaries, narrow size ranges and cycles of adjacent rooms make the first "
+    "layout hard to find. When the work limits ran out, a longer time limit changes nothing; "
+    "another seed draws other arrangements.",
     "settings\ntime_limit 0.5\n# a 40-room spec with a boundary barely larger than the rooms",
 )
 E903 = register(
@@ -150,7 +152,7 @@ I912 = register(
     "lets rectangles draw it. Where no L is enough, compile says so before any search (E912).",
     "# compile: C3 drawn as L-shaped rooms (rooms C0 C1 C3 and C1 C2 C3 are joined pairwise and\n"
     "#   E0, E2 must open to the outside: rectangles alone cannot draw them)\n"
-    "# error[E902]: no layout found within the time limit\n"
+    "# error[E902]: no layout found within the generator's work limits (8 rounds, ...)\n"
     "# info[I912]: rooms C0 C1 C3 and C1 C2 C3 are joined pairwise and E0, E2 must open to the "
     "outside: with C3 L-shaped they may be drawn, and the generator's arrangements did not reach it",
 )
@@ -227,32 +229,62 @@ def _first_line_span(spec: Spec) -> Span:
     return _FALLBACK_SPAN
 
 
-def no_layout_in_time(spec: Spec, options, status: str = "time_limit") -> Diagnostic:
-    """E902: the solver stopped (time, node or solution limit) with no layout; says what to try."""
-    if status == "node_limit" and options.node_limit is not None:
-        limit = f"the node limit of {options.node_limit}"
-    elif status == "solution_limit" and options.solution_limit is not None:
-        limit = f"the solution limit of {options.solution_limit}"
+@dataclass(frozen=True)
+class GeneratorRun:
+    """What the generator did before a compile without a layout: its rounds and moves, and
+    whether the clock cut it off (else its work limits ran out)."""
+
+    rounds: int
+    moves: int
+    cut_off: bool
+
+
+def no_layout_in_time(spec: Spec, options, status: str = "time_limit", *,
+                      generator: GeneratorRun | None = None, searched: bool = False) -> Diagnostic:
+    """E902: no layout; says what stopped compile and what to try.
+
+    `generator`: the generator's run, when it ran; `searched`: SCIP then searched the whole
+    model alone and stopped at `status`. A generator that ran out of its work limits (not
+    the clock) would find the same nothing with any time limit, so the message says so and
+    the help leaves `--time-limit` out (unless SCIP's search after it was cut off).
+    """
+    limit, longer = _stopping_limit(options, status)
+    exhausted = generator is not None and not generator.cut_off
+    if exhausted:
+        assert generator is not None
+        work = (f"the generator's work limits ({generator.rounds} round{'s' if generator.rounds != 1 else ''}, "
+                f"{generator.moves:,} moves)")
+        message = (f"no layout found within {work}, nor by the solver alone within {limit}" if searched
+                   else f"no layout found within {work}")
     else:
-        limit = f"the time limit of {options.time_limit:g} s"
+        message = f"no layout found within {limit}"
     grows = _boundary_grows(spec, options)
     return Diagnostic(
         code=E902,
-        message=f"no layout found within {limit}",
+        message=message,
         filename=spec.path,
         span=_first_line_span(spec),
         label="no layout for this boundary found",
         # another seed first: the construction draws its arrangements from it, and on the
         # largest real plan (school_stjoseph, 105 rooms) 2 of seeds 0-7 find nothing in 60 s
         # while the other 6 construct in 16-30 s (bench/results/generation-renamed.txt)
-        help=_alternatives(["another `--seed` (each draws other arrangements to construct)",
-                            "a longer limit (`--time-limit`)"]
+        help=_alternatives(["another `--seed` (each draws other arrangements to construct)"]
+                           + ([] if exhausted and not searched else [longer])
                            + ([] if grows else ["a larger boundary"])
                            + ["wider size ranges (a larger variance when importing)"]
                            + ([] if grows else ["`--grow-boundary`"])
                            + (["rectangular rooms (`layoutdsl import --rectangular-only`)"]
                               if _arms_from_source(spec) else [])),
     )
+
+
+def _stopping_limit(options, status: str) -> tuple[str, str]:
+    """(the limit that stopped a search, in words; the flag that raises it, as advice)."""
+    if status == "node_limit" and options.node_limit is not None:
+        return f"the node limit of {options.node_limit}", "a larger node limit (`--node-limit`)"
+    if status == "solution_limit" and options.solution_limit is not None:
+        return f"the solution limit of {options.solution_limit}", "a larger solution limit (`--solution-limit`)"
+    return f"the time limit of {options.time_limit:g} s", "a longer limit (`--time-limit`)"
 
 
 def _arms_from_source(spec: Spec) -> bool:
@@ -454,7 +486,7 @@ I911 = register(
     "line for a second of the four gives the search more shapes that fit; removing one of "
     "their six adjacencies makes them drawable with rectangles.",
     "# compile: C0 drawn as an L-shaped room (four rooms joined pairwise ...)\n"
-    "# error[E902]: no layout found within the time limit\n"
+    "# error[E902]: no layout found within the generator's work limits (8 rounds, ...)\n"
     "# info[I911]: rooms C0, C1, C2, C4 are joined pairwise: with C0 L-shaped they draw only as "
     "three around a point and C0 wrapping two of them, and the generator's arrangements did not "
     "reach it",
@@ -521,15 +553,6 @@ def outside_shortfall(spec: Spec, away: tuple[tuple[str, float], ...], overflow:
               "a room that opens to the outside needs a wall free of doors: fewer doors, wider size "
               "ranges for it, or `onB` dropped; another `--seed` draws other arrangements"),
     )
-
-
-def restate_limit(diagnostics: list[Diagnostic], spec: Spec, options, status: str = "time_limit") -> list[Diagnostic]:
-    """The diagnostics with every E902 saying `options`' limit.
-
-    Strategies that split the time (cycle decomposition, the fallback to it) compile parts of
-    the run under a share of the limit; the user asked for the whole one and must read that.
-    """
-    return [no_layout_in_time(spec, options, status) if d.code == E902 else d for d in diagnostics]
 
 
 def verification_failed(spec: Spec, violations) -> Diagnostic:

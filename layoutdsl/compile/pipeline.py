@@ -163,7 +163,8 @@ def compile_from_start(
         timings["total"] = time.monotonic() - began
         return CompileResult(best[1], [], best[2], timings, outcome)
 
-    return _with_closest_arrangement(_no_layout(spec, options, outcome, failures, explain_infeasible, timings, began),
+    return _with_closest_arrangement(_no_layout(spec, options, outcome, failures, explain_infeasible, timings, began,
+                                                generated),
                                      spec, options, generated)
 
 
@@ -199,7 +200,8 @@ def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, R
     rects_start, method = _verified_start(spec, rects_start)
     if rects_start is None:
         timings["total"] = time.monotonic() - began
-        return CompileResult(None, [explain.no_layout_in_time(spec, options)], "no_layout", timings)
+        return CompileResult(None, [explain.no_layout_in_time(spec, options, generator=_run_of(generated))],
+                             "no_layout", timings)
     boxes, joined = lshape.boxes_spec(spec, rects_start)
     joins = {pair: lshape.join_option(rects_start[pair[0]], rects_start[pair[1]]) for pair in joined}
     t0 = time.monotonic()
@@ -217,7 +219,7 @@ def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, R
     timings["total"] = time.monotonic() - began
     if best is not None:
         return CompileResult(best[1], [], best[2], timings, outcome)
-    return _no_layout(spec, options, outcome, failures, False, timings, began)
+    return _no_layout(spec, options, outcome, failures, False, timings, began, generated)
 
 
 def _progress_since(began: float, progress: ProgressCallback | None,
@@ -463,8 +465,9 @@ def _best_verified(spec: Spec, options: SolveOptions, candidates: list[tuple[dic
 
 
 def _no_layout(spec: Spec, options: SolveOptions, outcome: SolveOutcome, failures: list, explain_infeasible: bool,
-               timings: dict[str, float], began: float) -> CompileResult:
-    """The CompileResult without a layout: E903 (verification), E901/E904 (infeasible), E902."""
+               timings: dict[str, float], began: float, generated: Generated | None = None) -> CompileResult:
+    """The CompileResult without a layout: E903 (verification), E901/E904 (infeasible), E902
+    (what stopped the generator, when it found nothing, and then SCIP's search alone)."""
     if failures:
         diagnostics = [explain.verification_failed(spec, failures[0])]
         status = "verify_failed"
@@ -478,6 +481,16 @@ def _no_layout(spec: Spec, options: SolveOptions, outcome: SolveOutcome, failure
         timings["explain"] = time.monotonic() - t0
     else:
         status = "no_layout"
-        diagnostics = [explain.no_layout_in_time(spec, options, outcome.status)]
+        run = _run_of(generated)
+        # without the generator's rectangles SCIP searched the whole model alone
+        diagnostics = [explain.no_layout_in_time(spec, options, outcome.status, generator=run,
+                                                 searched=run is not None)]
     timings["total"] = time.monotonic() - began
     return CompileResult(None, diagnostics, status, timings, outcome)
+
+
+def _run_of(generated: Generated | None) -> explain.GeneratorRun | None:
+    """The generator's run, for E902, when it ran and found no rectangles."""
+    if generated is None or generated.rects is not None or generated.rounds == 0:
+        return None
+    return explain.GeneratorRun(generated.rounds, generated.moves, generated.cut_off)

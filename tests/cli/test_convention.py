@@ -317,7 +317,8 @@ def test_a_failed_variant_says_why(tmp_path, capsys, monkeypatch):
     assert code == exitcodes.NO_LAYOUT
     line = next(line for line in out.splitlines() if line.startswith("  tiny-v2"))
     assert line.startswith("  tiny-v2: no layout: no seed tried gave a new arrangement: for each, the generator")
-    assert "within the time limit (7 s)" in line and "--time-limit" in line
+    # a seed's try ends at the generator's work limits or the clock: the line names both
+    assert "within its work limits or the time limit (7 s)" in line and "--time-limit" in line
 
 
 # ----------------------------------------------------------------- deprecations
