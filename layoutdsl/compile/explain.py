@@ -229,31 +229,19 @@ def _first_line_span(spec: Spec) -> Span:
     return _FALLBACK_SPAN
 
 
-@dataclass(frozen=True)
-class GeneratorRun:
-    """What the generator did before a compile without a layout: its rounds and moves, and
-    whether the clock cut it off (else its work limits ran out)."""
-
-    rounds: int
-    moves: int
-    cut_off: bool
-
-
 def no_layout_in_time(spec: Spec, options, status: str = "time_limit", *,
-                      generator: GeneratorRun | None = None, searched: bool = False) -> Diagnostic:
+                      exhausted: tuple[int, int] | None = None, searched: bool = False) -> Diagnostic:
     """E902: no layout; says what stopped compile and what to try.
 
-    `generator`: the generator's run, when it ran; `searched`: SCIP then searched the whole
-    model alone and stopped at `status`. A generator that ran out of its work limits (not
-    the clock) would find the same nothing with any time limit, so the message says so and
+    `exhausted`: (rounds, moves) of a generator whose work limits ran out (not the clock);
+    `searched`: SCIP then searched the whole model alone and stopped at `status`. Such a
+    generator would find the same nothing with any time limit, so the message says so and
     the help leaves `--time-limit` out (unless SCIP's search after it was cut off).
     """
     limit, longer = _stopping_limit(options, status)
-    exhausted = generator is not None and not generator.cut_off
-    if exhausted:
-        assert generator is not None
-        work = (f"the generator's work limits ({generator.rounds} round{'s' if generator.rounds != 1 else ''}, "
-                f"{generator.moves:,} moves)")
+    if exhausted is not None:
+        rounds, moves = exhausted
+        work = f"the generator's work limits ({rounds} round{'s' if rounds != 1 else ''}, {moves:,} moves)"
         message = (f"no layout found within {work}, nor by the solver alone within {limit}" if searched
                    else f"no layout found within {work}")
     else:
@@ -269,7 +257,7 @@ def no_layout_in_time(spec: Spec, options, status: str = "time_limit", *,
         # largest real plan (school_stjoseph, 105 rooms) 2 of seeds 0-7 find nothing in 60 s
         # while the other 6 construct in 16-30 s (bench/results/generation-renamed.txt)
         help=_alternatives(["another `--seed` (each draws other arrangements to construct)"]
-                           + ([] if exhausted and not searched else [longer])
+                           + ([] if exhausted is not None and not searched else [longer])
                            + ([] if grows else ["a larger boundary"])
                            + ["wider size ranges (a larger variance when importing)"]
                            + ([] if grows else ["`--grow-boundary`"])

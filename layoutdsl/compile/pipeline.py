@@ -200,7 +200,7 @@ def _compile_l_rooms(spec: Spec, options: SolveOptions, rects_start: dict[str, R
     rects_start, method = _verified_start(spec, rects_start)
     if rects_start is None:
         timings["total"] = time.monotonic() - began
-        return CompileResult(None, [explain.no_layout_in_time(spec, options, generator=_run_of(generated))],
+        return CompileResult(None, [explain.no_layout_in_time(spec, options, exhausted=_work_ran_out(generated))],
                              "no_layout", timings)
     boxes, joined = lshape.boxes_spec(spec, rects_start)
     joins = {pair: lshape.join_option(rects_start[pair[0]], rects_start[pair[1]]) for pair in joined}
@@ -481,16 +481,16 @@ def _no_layout(spec: Spec, options: SolveOptions, outcome: SolveOutcome, failure
         timings["explain"] = time.monotonic() - t0
     else:
         status = "no_layout"
-        run = _run_of(generated)
         # without the generator's rectangles SCIP searched the whole model alone
-        diagnostics = [explain.no_layout_in_time(spec, options, outcome.status, generator=run,
-                                                 searched=run is not None)]
+        diagnostics = [explain.no_layout_in_time(spec, options, outcome.status,
+                                                 exhausted=_work_ran_out(generated), searched=True)]
     timings["total"] = time.monotonic() - began
     return CompileResult(None, diagnostics, status, timings, outcome)
 
 
-def _run_of(generated: Generated | None) -> explain.GeneratorRun | None:
-    """The generator's run, for E902, when it ran and found no rectangles."""
-    if generated is None or generated.rects is not None or generated.rounds == 0:
+def _work_ran_out(generated: Generated | None) -> tuple[int, int] | None:
+    """(rounds, moves) of a generator that ran out of its work limits without rectangles, for
+    E902; None when it found some, did not run, or the clock cut it off."""
+    if generated is None or generated.rects is not None or generated.rounds == 0 or generated.cut_off:
         return None
-    return explain.GeneratorRun(generated.rounds, generated.moves, generated.cut_off)
+    return generated.rounds, generated.moves

@@ -67,27 +67,30 @@ def test_on_boundary_flag_can_be_part_of_a_conflict():
 
 def test_no_layout_says_whether_work_or_the_clock_stopped_the_generator():
     from layoutdsl.compile import explain
+    from layoutdsl.compile.generator import Generated
+    from layoutdsl.compile.pipeline import _work_ran_out
 
     one = spec("one", [room("A", (2, 3, 2.5), (2, 3, 2.5))], 5, 5)
     options = SolveOptions(time_limit=60.0)
-    ran_out = explain.GeneratorRun(rounds=8, moves=4_590_000, cut_off=False)
+    ran_out = _work_ran_out(Generated(None, one, "", rounds=8, moves=4_590_000))
+    assert ran_out == (8, 4_590_000)
     # the work limits ran out and nothing searched after: the clock had no part in it
-    alone = explain.no_layout_in_time(one, options, generator=ran_out)
+    alone = explain.no_layout_in_time(one, options, exhausted=ran_out)
     assert alone.message == "no layout found within the generator's work limits (8 rounds, 4,590,000 moves)"
     assert "--time-limit" not in alone.help and "--seed" in alone.help
     # SCIP searched alone after the generator, until the time limit: both are said, and more
     # time is worth a try for that search
-    searched = explain.no_layout_in_time(one, options, "time_limit", generator=ran_out, searched=True)
+    searched = explain.no_layout_in_time(one, options, "time_limit", exhausted=ran_out, searched=True)
     assert searched.message == ("no layout found within the generator's work limits (8 rounds, 4,590,000 moves), "
                                 "nor by the solver alone within the time limit of 60 s")
     assert "`--time-limit`" in searched.help
     # the clock cut the generator off: the time limit is what stopped it
-    cut = explain.no_layout_in_time(one, options, generator=explain.GeneratorRun(3, 90_000, cut_off=True))
+    cut_off = _work_ran_out(Generated(None, one, "", rounds=3, moves=90_000, cut_off=True))
+    assert cut_off is None
+    cut = explain.no_layout_in_time(one, options, exhausted=cut_off)
     assert cut.message == "no layout found within the time limit of 60 s" and "`--time-limit`" in cut.help
     # a node limit that stopped SCIP is the limit to raise
     nodes = explain.no_layout_in_time(one, SolveOptions(time_limit=60.0, node_limit=1), "node_limit")
     assert nodes.message == "no layout found within the node limit of 1"
     assert "`--node-limit`" in nodes.help and "--time-limit" not in nodes.help
     assert {d.code for d in (alone, searched, cut, nodes)} == {"E902"}
-
-
